@@ -1,0 +1,86 @@
+// Gradient-deficient 3D ANCF cable element: elastic and Kelvin–Voigt internal forces with their
+// analytic Jacobians (paper eqs. S1–S5; DESIGN §3).
+//
+// Coordinates e = [r_i, r_i,x, r_j, r_j,x] ∈ R¹² (positions in m, slopes dimensionless).
+// With a = r_x and b = r_xx at a Gauss point and J₀ = |r⁰_x| of the stress-free reference:
+//   Green–Lagrange (paper, S3):  ε = ½(a·a − J₀²)/J₀²,   κ = |a × b| / |a|³ (Gerstmayr–Shabana)
+//   elastic line:                ε = |a|/J₀ − 1,           κ = |a × b| / |a|² (Gerstmayr–Irschik)
+// Strain energy per element (S5 generalised):
+//   U = ∫ [½ EA (ε + ε_p)² + ½ EI (κ − κ₀)²] J₀ dx,
+// with ε_p the prestrain and κ₀ the reference curvature, so any reference (straight, arc, helix)
+// is exactly stress-free when ε_p = 0. For a straight reference along its arc length J₀ = 1 and
+// κ₀ = 0, and with EI = 0 this is exactly the paper's element. Damping (Kelvin–Voigt) adds the
+// generalised force ∫ [c_a ε̇ ∂ε/∂e + c_b κ̇ ∂κ/∂e] J₀ dx.
+#pragma once
+
+#include <array>
+
+#include "ancf/core/gauss_legendre.hpp"
+#include "ancf/core/types.hpp"
+
+namespace ancf {
+
+enum class StrainMeasure {
+  green_lagrange,  ///< paper (S3) with Gerstmayr–Shabana curvature
+  elastic_line,    ///< ε = |r_x| − 1, K = r_x × r_xx / |r_x|² (Gerstmayr & Irschik 2008)
+};
+
+/// Section-level constitutive data of one cable (all elements of a cable share it).
+struct CableSection {
+  StrainMeasure strain = StrainMeasure::green_lagrange;
+  double axial_stiffness = 0.0;    ///< EA [N] (E₁A of the transversely isotropic law, S4)
+  double bending_stiffness = 0.0;  ///< EI [N m²]; 0 → the paper's pure cable, no bending terms
+  double mass_per_length = 0.0;    ///< ρA [kg/m]
+  double prestrain = 0.0;          ///< ε_p [-]: the reference carries axial force EA·ε_p
+  double axial_damping = 0.0;      ///< c_a [N s]: Kelvin–Voigt axial force c_a ε̇
+  double bending_damping = 0.0;    ///< c_b [N m² s]: Kelvin–Voigt bending moment c_b κ̇
+
+  [[nodiscard]] bool has_bending() const { return bending_stiffness > 0.0 || bending_damping > 0.0; }
+  [[nodiscard]] bool has_damping() const { return axial_damping > 0.0 || bending_damping > 0.0; }
+};
+
+/// Number of Gauss points per element. The Green axial force integrand is a polynomial of degree
+/// 8 in ξ, which 5 points integrate exactly (DESIGN §3).
+inline constexpr int kCableGaussPoints = 5;
+
+/// Per-element data that depend only on the stress-free reference: shape-function derivatives,
+/// integration weights and reference metric/curvature at each Gauss point. Built once per element.
+struct CableElementReference {
+  double length = 0.0;  ///< l [m]
+  std::array<Vec4, kCableGaussPoints> d1;   ///< dS/dx at the Gauss points
+  std::array<Vec4, kCableGaussPoints> d2;   ///< d²S/dx² at the Gauss points
+  std::array<double, kCableGaussPoints> weight{};  ///< w_g · l · J₀_g (measure of J₀ dx)
+  std::array<double, kCableGaussPoints> inv_j0{};  ///< 1/J₀_g
+  std::array<double, kCableGaussPoints> kappa0{};  ///< κ₀ at the Gauss points (per strain measure)
+
+  /// Build from the reference nodal coordinates e0 and length l > 0. Throws ModelError if the
+  /// reference has a vanishing slope at a Gauss point.
+  static CableElementReference from_reference(const Vec12& e0, double length, StrainMeasure strain);
+};
+
+/// What to evaluate. Force and energy are always computed.
+struct CableEvalRequest {
+  bool stiffness = false;       ///< ∂f/∂e (includes ∂(damping force)/∂e when damping is present)
+  bool damping_matrix = false;  ///< ∂f/∂ė
+};
+
+/// Element results. Sign convention: f is the internal force F of M q'' + F = Q, i.e. ∂U/∂e plus
+/// the damping force.
+struct CableElementResult {
+  double energy = 0.0;  ///< U [J]
+  Vec12 force;          ///< f [N]
+  Mat12 stiffness;      ///< ∂f/∂e (valid if requested)
+  Mat12 damping;        ///< ∂f/∂ė (valid if requested and the section has damping)
+};
+
+/// Evaluate the element at coordinates e and velocities e_dot (e_dot is read only when the
+/// section has damping). Overwrites `out`. No heap allocation.
+void evaluate_cable_element(const CableSection& section, const CableElementReference& ref,
+                            const Vec12& e, const Vec12& e_dot, const CableEvalRequest& request,
+                            CableElementResult& out);
+
+/// Axial strain ε at ξ for diagnostics (e.g. tension N = EA(ε + ε_p) in outputs).
+[[nodiscard]] double cable_axial_strain(StrainMeasure strain, const Vec12& e, double xi,
+                                        double length, double j0);
+
+}  // namespace ancf

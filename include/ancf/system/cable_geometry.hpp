@@ -1,0 +1,39 @@
+// Nodal coordinates of a cable: generators for common stress-free reference shapes.
+#pragma once
+
+#include <vector>
+
+#include "ancf/core/types.hpp"
+
+namespace ancf {
+
+using NodeCoordinates = Eigen::Matrix<double, 6, 1>;  ///< [r (m), r_x (-)] of one node
+
+/// Nodes (position and slope) and element lengths of one cable, in order along the cable.
+/// Slopes are derivatives with respect to the reference arc length, so for a reference shape
+/// they are unit tangents. Invariant: nodes.size() == element_lengths.size() + 1.
+struct CableGeometry {
+  std::vector<NodeCoordinates> nodes;
+  std::vector<double> element_lengths;  ///< [m], each > 0
+
+  [[nodiscard]] Index element_count() const { return static_cast<Index>(element_lengths.size()); }
+  [[nodiscard]] Index node_count() const { return static_cast<Index>(nodes.size()); }
+  /// The 12 coordinates of element j: [node j, node j + 1].
+  [[nodiscard]] Vec12 element_coordinates(Index j) const;
+};
+
+/// Straight cable from `start` to `end` with n ≥ 1 equal elements, slopes = unit direction.
+[[nodiscard]] CableGeometry straight_cable(const Vec3& start, const Vec3& end, Index elements);
+
+/// Circular arc of radius R > 0 about `centre` in the plane spanned by unit vectors u (towards the
+/// start point) and w (direction of travel at the start), from angle 0 to `angle` [rad].
+[[nodiscard]] CableGeometry arc_cable(const Vec3& centre, const Vec3& u, const Vec3& w,
+                                      double radius, double angle, Index elements);
+
+/// Helix about the axis through `base` along unit `axis`, radius R, starting at polar angle phi0
+/// (measured from unit `u` ⊥ axis towards axis × u), turning by `twist` [rad] while rising `rise` [m].
+[[nodiscard]] CableGeometry helix_cable(const Vec3& base, const Vec3& axis, const Vec3& u,
+                                        double radius, double phi0, double twist, double rise,
+                                        Index elements);
+
+}  // namespace ancf

@@ -1,0 +1,31 @@
+// Adapter: a Model's equilibrium equations as the abstract StaticProblem the solvers see.
+#pragma once
+
+#include "ancf/core/static_problem.hpp"
+#include "ancf/system/assembly.hpp"
+
+namespace ancf {
+
+/// y = [q; λ]; R(y, s) = [F(q) − sQ + Φ_qᵀλ; Φ(q)], ∂R/∂y in model.pattern().
+/// Ownership: keeps a reference to `model`, which must outlive the problem.
+class StaticModelProblem final : public StaticProblem {
+ public:
+  explicit StaticModelProblem(const Model& model);
+
+  [[nodiscard]] Index size() const override { return model_.system_size(); }
+  [[nodiscard]] const SparsityPattern& jacobian_pattern() const override { return model_.pattern(); }
+  [[nodiscard]] Index coordinate_count() const override { return model_.coordinate_count(); }
+  void residual(std::span<const double> y, double load_factor, std::span<double> r) override;
+  void jacobian(std::span<const double> y, double load_factor, std::span<double> values) override;
+  [[nodiscard]] std::string describe_row(Index i) const override { return model_.describe_row(i); }
+
+  /// y from the model's initial configuration, λ = 0.
+  [[nodiscard]] VecX initial_guess() const;
+
+ private:
+  void load_state(std::span<const double> y);
+  const Model& model_;
+  SystemState state_;  // workspace: q, λ copied from y, v = a = 0
+};
+
+}  // namespace ancf

@@ -1,0 +1,95 @@
+#include "ancf/core/klu_solver.hpp"
+
+#include <klu.h>
+
+#include <string>
+
+#include "ancf/core/error.hpp"
+
+namespace ancf {
+
+static_assert(sizeof(SuiteSparse_long) == sizeof(Index), "KLU long interface must match Index");
+
+struct KluSolver::Impl {
+  klu_l_common common{};
+  klu_l_symbolic* symbolic = nullptr;
+  klu_l_numeric* numeric = nullptr;
+  ~Impl() {
+    if (numeric) klu_l_free_numeric(&numeric, &common);
+    if (symbolic) klu_l_free_symbolic(&symbolic, &common);
+  }
+};
+
+namespace {
+// KLU's C interface takes non-const pointers but does not modify the pattern arrays.
+SuiteSparse_long* mutable_ptr(const std::vector<Index>& v) {
+  return const_cast<SuiteSparse_long*>(reinterpret_cast<const SuiteSparse_long*>(v.data()));
+}
+}  // namespace
+
+KluSolver::KluSolver(const SparsityPattern& pattern) : impl_(std::make_unique<Impl>()), pattern_(pattern) {
+  if (!pattern.frozen()) throw std::logic_error("KluSolver: pattern must be frozen");
+  klu_l_defaults(&impl_->common);
+  impl_->symbolic = klu_l_analyze(pattern.size(), mutable_ptr(pattern.column_start()),
+                                  mutable_ptr(pattern.row_index()), &impl_->common);
+  if (!impl_->symbolic) {
+    throw SolverError("KLU symbolic analysis failed (status " +
+                      std::to_string(impl_->common.status) + ") for a matrix of size " +
+                      std::to_string(pattern.size()));
+  }
+}
+
+KluSolver::~KluSolver() = default;
+
+void KluSolver::factor(std::span<const double> values) {
+  if (static_cast<Index>(values.size()) != pattern_.nonzeros()) {
+    throw std::invalid_argument("KluSolver::factor: value count does not match the pattern");
+  }
+  auto* ap = mutable_ptr(pattern_.column_start());
+  auto* ai = mutable_ptr(pattern_.row_index());
+  auto* ax = const_cast<double*>(values.data());
+  Impl& k = *impl_;
+  if (pivots_valid_ && k.numeric) {
+    const bool ok = klu_l_refactor(ap, ai, ax, k.symbolic, k.numeric, &k.common) == 1;
+    // Pivot growth check: refactor keeps the old pivot order, which can be poor once values
+    // have changed a lot; fall back to a fresh factorization then.
+    if (ok && klu_l_rgrowth(ap, ai, ax, k.symbolic, k.numeric, &k.common) == 1 &&
+        k.common.rgrowth > 1e-10 && k.common.status == KLU_OK) {
+      ++refactorizations_;
+      return;
+    }
+  }
+  if (k.numeric) klu_l_free_numeric(&k.numeric, &k.common);
+  k.numeric = klu_l_factor(ap, ai, ax, k.symbolic, &k.common);
+  if (!k.numeric || k.common.status != KLU_OK) {
+    pivots_valid_ = false;
+    const std::string where = k.common.status == KLU_SINGULAR
+                                  ? " (numerically singular at column " +
+                                        std::to_string(k.common.singular_col) + ")"
+                                  : "";
+    throw SolverError("KLU factorization failed, status " + std::to_string(k.common.status) +
+                      where);
+  }
+  pivots_valid_ = true;
+  ++full_factorizations_;
+}
+
+void KluSolver::solve(std::span<double> rhs) {
+  Impl& k = *impl_;
+  if (!k.numeric) throw std::logic_error("KluSolver::solve before a successful factor()");
+  if (static_cast<Index>(rhs.size()) != pattern_.size()) {
+    throw std::invalid_argument("KluSolver::solve: right-hand side has the wrong size");
+  }
+  if (klu_l_solve(k.symbolic, k.numeric, pattern_.size(), 1, rhs.data(), &k.common) != 1) {
+    throw SolverError("KLU solve failed, status " + std::to_string(k.common.status));
+  }
+}
+
+double KluSolver::rcond() {
+  Impl& k = *impl_;
+  if (!k.numeric) return 0.0;
+  klu_l_rcond(k.symbolic, k.numeric, &k.common);
+  return k.common.rcond;
+}
+
+}  // namespace ancf

@@ -1,0 +1,245 @@
+#include "ancf/physics/cable_element.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "ancf/core/error.hpp"
+#include "ancf/physics/hermite_shape.hpp"
+
+namespace ancf {
+namespace {
+
+using Mat34 = Eigen::Matrix<double, 3, 4>;
+
+// Reference curvatures below this angle per element (κ₀ l) are round-off of a straight
+// reference and are set to zero, which selects the smooth κ² branch of the bending energy.
+constexpr double kStraightReferenceAngle = 1e-10;
+// Below this fraction of κ₀ the current curvature direction is undefined (κ − κ₀ is not
+// differentiable at κ = 0); the κ₀-terms are dropped there (a subgradient choice).
+constexpr double kVanishingCurvatureRatio = 1e-8;
+
+/// Axial strain and its first two derivatives with respect to a = r_x at one Gauss point.
+struct AxialStrain {
+  double eps;
+  Vec3 eps_a;
+  Mat3 eps_aa;
+};
+
+inline AxialStrain axial_strain(StrainMeasure measure, const Vec3& a, double inv_j0) {
+  AxialStrain s;
+  if (measure == StrainMeasure::green_lagrange) {
+    const double ij2 = inv_j0 * inv_j0;
+    s.eps = 0.5 * (a.squaredNorm() * ij2 - 1.0);
+    s.eps_a = ij2 * a;
+    s.eps_aa = ij2 * Mat3::Identity();
+  } else {
+    const double na = a.norm();
+    const double c = inv_j0 / na;
+    s.eps = na * inv_j0 - 1.0;
+    s.eps_a = c * a;
+    s.eps_aa = c * (Mat3::Identity() - (a / na) * (a / na).transpose());
+  }
+  return s;
+}
+
+/// K² = |a × b|² / |a|^(2p) (p = 3 Gerstmayr–Shabana, p = 2 elastic line) and its gradient and
+/// Hessian in x = (a, b), via φ = (a·a)(b·b) − (a·b)² = |a × b|² and ψ = (a·a)^(−p).
+struct CurvatureSquared {
+  double k2;
+  Eigen::Matrix<double, 6, 1> grad;
+  Eigen::Matrix<double, 6, 6> hess;
+};
+
+inline int curvature_power(StrainMeasure m) { return m == StrainMeasure::green_lagrange ? 3 : 2; }
+
+inline double curvature_squared_value(const Vec3& a, const Vec3& b, int p) {
+  const double saa = a.squaredNorm(), sbb = b.squaredNorm(), sab = a.dot(b);
+  return std::max(saa * sbb - sab * sab, 0.0) * std::pow(saa, -p);
+}
+
+inline CurvatureSquared curvature_squared(const Vec3& a, const Vec3& b, int p) {
+  const double saa = a.squaredNorm(), sbb = b.squaredNorm(), sab = a.dot(b);
+  const double phi = std::max(saa * sbb - sab * sab, 0.0);
+  const double psi = std::pow(saa, -p);
+  const double psi1 = -2.0 * p * psi / saa;                     // ψ_a = psi1 · a
+  const double psi2 = 4.0 * p * (p + 1.0) * psi / (saa * saa);  // ψ_aa = psi1 I + psi2 a aᵀ
+  const Vec3 phi_a = 2.0 * sbb * a - 2.0 * sab * b;
+  const Vec3 phi_b = 2.0 * saa * b - 2.0 * sab * a;
+  const Mat3 id = Mat3::Identity();
+  const Mat3 phi_aa = 2.0 * sbb * id - 2.0 * b * b.transpose();
+  const Mat3 phi_bb = 2.0 * saa * id - 2.0 * a * a.transpose();
+  const Mat3 phi_ab = 4.0 * a * b.transpose() - 2.0 * b * a.transpose() - 2.0 * sab * id;
+  const Vec3 psi_a = psi1 * a;
+
+  CurvatureSquared c;
+  c.k2 = phi * psi;
+  c.grad.head<3>() = phi_a * psi + phi * psi_a;
+  c.grad.tail<3>() = phi_b * psi;
+  c.hess.topLeftCorner<3, 3>() = phi_aa * psi + phi_a * psi_a.transpose() +
+                                 psi_a * phi_a.transpose() +
+                                 phi * (psi1 * id + psi2 * a * a.transpose());
+  c.hess.topRightCorner<3, 3>() = phi_ab * psi + psi_a * phi_b.transpose();
+  c.hess.bottomLeftCorner<3, 3>() = c.hess.topRightCorner<3, 3>().transpose();
+  c.hess.bottomRightCorner<3, 3>() = phi_bb * psi;
+  return c;
+}
+
+// Scatter a gradient (g_a, g_b) and a Hessian in (a, b) through a = E d1, b = E d2:
+// f_k += d1_k g_a + d2_k g_b;  K_km += Σ_{p,q} dp_k dq_m H_pq.
+inline void scatter_force(const Vec4& d1, const Vec3& ga, Vec12& f) {
+  for (int k = 0; k < 4; ++k) f.segment<3>(3 * k) += d1[k] * ga;
+}
+
+inline void scatter_matrix(const Vec4& d1, const Mat3& haa, Mat12& k) {
+  for (int m = 0; m < 4; ++m)
+    for (int n = 0; n < 4; ++n) k.block<3, 3>(3 * m, 3 * n) += (d1[m] * d1[n]) * haa;
+}
+
+inline void scatter_matrix(const Vec4& d1, const Vec4& d2, const Eigen::Matrix<double, 6, 6>& h,
+                           Mat12& k) {
+  const Mat3 haa = h.topLeftCorner<3, 3>(), hab = h.topRightCorner<3, 3>();
+  const Mat3 hba = h.bottomLeftCorner<3, 3>(), hbb = h.bottomRightCorner<3, 3>();
+  for (int m = 0; m < 4; ++m)
+    for (int n = 0; n < 4; ++n)
+      k.block<3, 3>(3 * m, 3 * n) += (d1[m] * d1[n]) * haa + (d1[m] * d2[n]) * hab +
+                                     (d2[m] * d1[n]) * hba + (d2[m] * d2[n]) * hbb;
+}
+
+template <bool kBending, bool kDamping>
+void evaluate(const CableSection& sec, const CableElementReference& ref, const Vec12& e,
+              const Vec12& e_dot, const CableEvalRequest& req, CableElementResult& out) {
+  using Vec6 = Eigen::Matrix<double, 6, 1>;
+  using Mat6 = Eigen::Matrix<double, 6, 6>;
+  const Eigen::Map<const Mat34> E(e.data());
+  const Eigen::Map<const Mat34> Edot(e_dot.data());
+  const double ea = sec.axial_stiffness, ei = sec.bending_stiffness;
+  const double ca = sec.axial_damping, cb = sec.bending_damping;
+  const int p = curvature_power(sec.strain);
+
+  out.energy = 0.0;
+  out.force.setZero();
+  if (req.stiffness) out.stiffness.setZero();
+  if (kDamping && req.damping_matrix) out.damping.setZero();
+
+  for (int g = 0; g < kCableGaussPoints; ++g) {
+    const double w = ref.weight[g];
+    const Vec4& d1 = ref.d1[g];
+    const Vec3 a = E * d1;
+    const AxialStrain s = axial_strain(sec.strain, a, ref.inv_j0[g]);
+    const double n_axial = ea * (s.eps + sec.prestrain);  // axial force conjugate to ε
+    out.energy += 0.5 * w * n_axial * (s.eps + sec.prestrain);
+
+    Vec3 ga = (w * n_axial) * s.eps_a;
+    Mat3 haa = Mat3::Zero();
+    if (req.stiffness) haa = w * (ea * s.eps_a * s.eps_a.transpose() + n_axial * s.eps_aa);
+    if constexpr (kDamping) {
+      if (ca > 0.0) {
+        const Vec3 a_dot = Edot * d1;
+        const double eps_dot = s.eps_a.dot(a_dot);
+        ga += (w * ca * eps_dot) * s.eps_a;
+        if (req.stiffness)
+          haa += (w * ca) * (s.eps_a * (s.eps_aa * a_dot).transpose() + eps_dot * s.eps_aa);
+        if (req.damping_matrix)
+          scatter_matrix(d1, ((w * ca) * s.eps_a * s.eps_a.transpose()).eval(), out.damping);
+      }
+    }
+
+    if constexpr (!kBending) {
+      scatter_force(d1, ga, out.force);
+      if (req.stiffness) scatter_matrix(d1, haa, out.stiffness);
+    } else {
+      const Vec4& d2 = ref.d2[g];
+      const Vec3 b = E * d2;
+      const CurvatureSquared c = curvature_squared(a, b, p);
+      const double kappa = std::sqrt(c.k2);
+      const double kappa_ref = ref.kappa0[g];
+      out.energy += 0.5 * w * ei * (kappa - kappa_ref) * (kappa - kappa_ref);
+      const double kappa0 = kappa > kVanishingCurvatureRatio * kappa_ref ? kappa_ref : 0.0;
+      // U_b = EI h(K²) with h = ½K² − κ₀√K² + ½κ₀²: h' = ½ − κ₀/(2κ), h'' = κ₀/(4κ³).
+      const double h1 = kappa0 > 0.0 ? 0.5 - 0.5 * kappa0 / kappa : 0.5;
+      const double h2 = kappa0 > 0.0 ? 0.25 * kappa0 / (kappa * kappa * kappa) : 0.0;
+
+      Vec6 gx = (w * ei * h1) * c.grad;
+      gx.head<3>() += ga;
+      Mat6 hx;
+      if (req.stiffness) {
+        hx = (w * ei) * (h1 * c.hess + h2 * c.grad * c.grad.transpose());
+        hx.topLeftCorner<3, 3>() += haa;
+      }
+      if constexpr (kDamping) {
+        if (cb > 0.0 && kappa > 0.0) {
+          // κ̇ = ∇κ·ẋ with ∇κ = ∇K²/(2κ), ∇²κ = ∇²K²/(2κ) − ∇K²∇K²ᵀ/(4κ³).
+          Vec6 x_dot;
+          x_dot << Edot * d1, Edot * d2;
+          const Vec6 dk = c.grad / (2.0 * kappa);
+          const double kappa_dot = dk.dot(x_dot);
+          gx += (w * cb * kappa_dot) * dk;
+          if (req.stiffness) {
+            const Mat6 hk = c.hess / (2.0 * kappa) -
+                            c.grad * c.grad.transpose() / (4.0 * kappa * kappa * kappa);
+            hx += (w * cb) * (dk * (hk * x_dot).transpose() + kappa_dot * hk);
+          }
+          if (req.damping_matrix)
+            scatter_matrix(d1, d2, ((w * cb) * dk * dk.transpose()).eval(), out.damping);
+        }
+      }
+      scatter_force(d1, gx.head<3>(), out.force);
+      scatter_force(d2, gx.tail<3>(), out.force);
+      if (req.stiffness) scatter_matrix(d1, d2, hx, out.stiffness);
+    }
+  }
+}
+
+}  // namespace
+
+CableElementReference CableElementReference::from_reference(const Vec12& e0, double length,
+                                                            StrainMeasure strain) {
+  if (!(length > 0.0)) {
+    throw ModelError("cable element length must be > 0 m, got " + std::to_string(length));
+  }
+  CableElementReference ref;
+  ref.length = length;
+  const GaussRule rule = gauss_legendre_unit(kCableGaussPoints);
+  const Eigen::Map<const Mat34> E0(e0.data());
+  for (int g = 0; g < kCableGaussPoints; ++g) {
+    const double xi = rule.points[g];
+    ref.d1[g] = hermite::first_derivative(xi, length);
+    ref.d2[g] = hermite::second_derivative(xi, length);
+    const Vec3 a0 = E0 * ref.d1[g];
+    const Vec3 b0 = E0 * ref.d2[g];
+    const double j0 = a0.norm();
+    if (!(j0 > 1e-12)) {
+      throw ModelError("cable element reference has a vanishing slope |r_x| = " +
+                       std::to_string(j0) + " at xi = " + std::to_string(xi));
+    }
+    ref.inv_j0[g] = 1.0 / j0;
+    ref.weight[g] = rule.weights[g] * length * j0;
+    double kappa0 = std::sqrt(curvature_squared_value(a0, b0, curvature_power(strain)));
+    if (kappa0 * length <= kStraightReferenceAngle) kappa0 = 0.0;
+    ref.kappa0[g] = kappa0;
+  }
+  return ref;
+}
+
+void evaluate_cable_element(const CableSection& section, const CableElementReference& ref,
+                            const Vec12& e, const Vec12& e_dot, const CableEvalRequest& request,
+                            CableElementResult& out) {
+  const bool bending = section.has_bending();
+  const bool damping = section.has_damping();
+  if (bending) {
+    if (damping) evaluate<true, true>(section, ref, e, e_dot, request, out);
+    else evaluate<true, false>(section, ref, e, e_dot, request, out);
+  } else {
+    if (damping) evaluate<false, true>(section, ref, e, e_dot, request, out);
+    else evaluate<false, false>(section, ref, e, e_dot, request, out);
+  }
+}
+
+double cable_axial_strain(StrainMeasure strain, const Vec12& e, double xi, double length,
+                          double j0) {
+  const Eigen::Map<const Mat34> E(e.data());
+  const Vec3 a = E * hermite::first_derivative(xi, length);
+  return axial_strain(strain, a, 1.0 / j0).eps;
+}
+
+}  // namespace ancf

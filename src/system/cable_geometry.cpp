@@ -1,0 +1,78 @@
+#include "ancf/system/cable_geometry.hpp"
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <string>
+
+#include "ancf/core/error.hpp"
+
+namespace ancf {
+
+Vec12 CableGeometry::element_coordinates(Index j) const {
+  Vec12 e;
+  e << nodes[j], nodes[j + 1];
+  return e;
+}
+
+namespace {
+void require_elements(Index n, const char* what) {
+  if (n < 1) throw ModelError(std::string(what) + ": element count must be >= 1, got " + std::to_string(n));
+}
+}  // namespace
+
+CableGeometry straight_cable(const Vec3& start, const Vec3& end, Index elements) {
+  require_elements(elements, "straight_cable");
+  const double length = (end - start).norm();
+  if (!(length > 0.0)) throw ModelError("straight_cable: start and end coincide (zero length)");
+  const Vec3 t = (end - start) / length;
+  CableGeometry g;
+  for (Index k = 0; k <= elements; ++k) {
+    NodeCoordinates n;
+    n << start + (static_cast<double>(k) / elements) * (end - start), t;
+    g.nodes.push_back(n);
+  }
+  g.element_lengths.assign(elements, length / elements);
+  return g;
+}
+
+CableGeometry arc_cable(const Vec3& centre, const Vec3& u, const Vec3& w, double radius,
+                        double angle, Index elements) {
+  require_elements(elements, "arc_cable");
+  if (!(radius > 0.0) || !(std::abs(angle) > 0.0))
+    throw ModelError("arc_cable: radius and angle must be non-zero");
+  const Vec3 e1 = u.normalized(), e2 = (w - w.dot(e1) * e1).normalized();
+  CableGeometry g;
+  for (Index k = 0; k <= elements; ++k) {
+    const double phi = angle * static_cast<double>(k) / elements;
+    NodeCoordinates n;
+    n << centre + radius * (std::cos(phi) * e1 + std::sin(phi) * e2),
+        -std::sin(phi) * e1 + std::cos(phi) * e2;
+    g.nodes.push_back(n);
+  }
+  g.element_lengths.assign(elements, radius * std::abs(angle) / elements);
+  return g;
+}
+
+CableGeometry helix_cable(const Vec3& base, const Vec3& axis, const Vec3& u, double radius,
+                          double phi0, double twist, double rise, Index elements) {
+  require_elements(elements, "helix_cable");
+  const Vec3 ez = axis.normalized();
+  const Vec3 ex = (u - u.dot(ez) * ez).normalized();
+  const Vec3 ey = ez.cross(ex);
+  const double length = std::hypot(radius * twist, rise);
+  if (!(radius > 0.0) || !(length > 0.0)) throw ModelError("helix_cable: zero radius or length");
+  CableGeometry g;
+  for (Index k = 0; k <= elements; ++k) {
+    const double s = static_cast<double>(k) / elements;
+    const double phi = phi0 + twist * s;
+    NodeCoordinates n;
+    const Vec3 r = base + radius * (std::cos(phi) * ex + std::sin(phi) * ey) + rise * s * ez;
+    const Vec3 dr = radius * twist * (-std::sin(phi) * ex + std::cos(phi) * ey) + rise * ez;
+    n << r, dr / length;
+    g.nodes.push_back(n);
+  }
+  g.element_lengths.assign(elements, length / elements);
+  return g;
+}
+
+}  // namespace ancf
