@@ -7,10 +7,6 @@
 #include "ancf/core/error.hpp"
 
 namespace ancf {
-namespace {
-std::span<double> as_span(VecX& v) { return {v.data(), static_cast<std::size_t>(v.size())}; }
-}  // namespace
-
 StaticSolver::StaticSolver(StaticProblem& problem, StaticSolverOptions options)
     : problem_(problem),
       options_(options),

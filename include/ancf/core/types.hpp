@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <span>
 
 namespace ancf {
 
@@ -18,5 +19,11 @@ using Vec12 = Eigen::Matrix<double, 12, 1>;
 using Mat12 = Eigen::Matrix<double, 12, 12>;
 using VecX = Eigen::VectorXd;
 using MatX = Eigen::MatrixXd;
+
+/// Views of an Eigen vector as a span, for the span-based solver interfaces.
+inline std::span<double> as_span(VecX& v) { return {v.data(), static_cast<std::size_t>(v.size())}; }
+inline std::span<const double> as_span(const VecX& v) {
+  return {v.data(), static_cast<std::size_t>(v.size())};
+}
 
 }  // namespace ancf
