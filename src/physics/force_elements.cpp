@@ -1,0 +1,3 @@
+#include "ancf/physics/force_elements.hpp"
+
+namespace ancf {}  // namespace ancf

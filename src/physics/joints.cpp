@@ -1,0 +1,3 @@
+#include "ancf/physics/joints.hpp"
+
+namespace ancf {}  // namespace ancf
