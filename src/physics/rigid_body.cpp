@@ -16,9 +16,11 @@ void RigidBodyInertia::validate(const std::string& body) const {
   if (!inertia.allFinite() || (inertia - inertia.transpose()).norm() > 1e-12 * inertia.norm())
     fail("inertia tensor must be finite and symmetric");
   const Vec3 p = Eigen::SelfAdjointEigenSolver<Mat3>(inertia).eigenvalues();
-  if (!(p.minCoeff() > 0.0)) fail("inertia tensor must be positive definite");
+  // Computed eigenvalues carry round-off ~eps·‖I‖: a semi-definite I (ideal thin rod) must not pass
+  // or fail depending on its orientation, so positive means above the same relative tolerance.
+  const double tol = 1e-12 * std::abs(p.sum());
+  if (!(p.minCoeff() > tol)) fail("inertia tensor must be positive definite");
   // J̄_c = ½tr(I)1 − I must be positive semi-definite: each principal moment ≤ sum of the others.
-  const double tol = 1e-12 * p.sum();
   if (p[2] > p[0] + p[1] + tol)
     fail("principal moments violate the triangle inequality I3 <= I1 + I2");
 }
@@ -31,7 +33,10 @@ Mat4 natural_mass_matrix(const RigidBodyInertia& in) {
   m4(0, 0) = m;
   m4.block<1, 3>(0, 1) = m * c.transpose();
   m4.block<3, 1>(1, 0) = m * c;
-  m4.block<3, 3>(1, 1) = m * c * c.transpose() + j_c;
+  // c̄c̄ᵀ evaluated on its own (Eigen rewrites m·(c̄c̄ᵀ) as (m c̄)c̄ᵀ, which is not exactly
+  // symmetric): c_i c_j = c_j c_i, so M is exactly symmetric for a symmetric I_c.
+  const Mat3 cc = c * c.transpose();
+  m4.block<3, 3>(1, 1) = m * cc + j_c;
   return m4;
 }
 

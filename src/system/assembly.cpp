@@ -1,22 +1,56 @@
 #include "ancf/system/assembly.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 
 namespace ancf {
 namespace {
 
-// Visit every element with its 12 coordinates/velocities mapped from the global vectors.
+using BlockVec = std::array<Vec3, AffineVector::kMaxTerms>;
+
+// Visit every cable element with its 12 coordinates/velocities taken from the global vectors.
 template <class Visitor>
 void for_each_element(const Model& model, const VecX& q, const VecX& v, Visitor&& visit) {
   for (Index ci = 0; ci < static_cast<Index>(model.cables().size()); ++ci) {
     const CableData& c = model.cables()[ci];
+    const bool damping = c.section.has_damping();
     for (Index j = 0; j < static_cast<Index>(c.elements.size()); ++j) {
       const Index base = c.first_coordinate + 6 * j;
       const Vec12 e = q.segment<12>(base);
-      const Vec12 e_dot = c.section.has_damping() ? Vec12(v.segment<12>(base)) : Vec12::Zero();
+      const Vec12 e_dot = damping ? Vec12(v.segment<12>(base)) : Vec12::Zero();
       visit(ci, j, c, base, e, e_dot);
     }
   }
+}
+
+// r[base + 3p : +3] += Σ_s m4(p, s) x[base + 3s : +3] — a (4×4 ⊗ I₃) product on one block.
+inline void add_mass_times(const Mat4& m4, Index base, const VecX& x, Eigen::Map<VecX>& r) {
+  for (int p = 0; p < 4; ++p)
+    for (int s = 0; s < 4; ++s) r.segment<3>(base + 3 * p) += m4(p, s) * x.segment<3>(base + 3 * s);
+}
+
+// values[slots] += w_a (m4 ⊗ I₃): only the diagonal of each 3×3 block is non-zero.
+inline void add_mass_matrix(const Mat4& m4, const std::array<Index, 144>& slots, double w_a,
+                            std::span<double> values) {
+  for (int s = 0; s < 4; ++s)
+    for (int p = 0; p < 4; ++p)
+      for (int d = 0; d < 3; ++d) values[slots[12 * (3 * s + d) + 3 * p + d]] += w_a * m4(p, s);
+}
+
+// Scatter −scale·Q of a force element into the dynamic residual rows.
+inline void subtract_force(const BlockList& blocks, const ForceResult& f, double scale,
+                           Eigen::Map<VecX>& r) {
+  for (int b = 0; b < blocks.count; ++b) r.segment<3>(blocks.blocks[b]) -= scale * f.force.segment<3>(3 * b);
+}
+
+// values += −(w_q ∂Q/∂q + w_v ∂Q/∂v) through the element's column-major slots.
+inline void subtract_force_jacobian(const std::vector<Index>& slots, const ForceResult& f,
+                                    double w_q, double w_v, std::span<double> values) {
+  const Eigen::Index n = f.d_force_dq.rows();
+  for (Eigen::Index c = 0; c < n; ++c)
+    for (Eigen::Index r = 0; r < n; ++r)
+      values[slots[c * n + r]] -= w_q * f.d_force_dq(r, c) + w_v * f.d_force_dv(r, c);
 }
 
 }  // namespace
@@ -30,98 +64,216 @@ SystemState SystemState::initial(const Model& model) {
   return s;
 }
 
+Workspace::Workspace(const Model& model) : frames(model.frames().size()) {}
+
+std::span<const FrameKinematics> Workspace::frames_at(const Model& model, double t) {
+  if (!frames_valid || t != frames_time) {
+    for (std::size_t k = 0; k < frames.size(); ++k) frames[k] = model.frames()[k].at(t);
+    frames_time = t;
+    frames_valid = true;
+  }
+  return frames;
+}
+
 void assemble_residual(const Model& model, const SystemState& state, double load_factor,
-                       std::span<double> r) {
+                       Workspace& ws, std::span<double> r) {
   const Index n = model.coordinate_count();
   Eigen::Map<VecX> rq(r.data(), n);
   rq.noalias() = -load_factor * model.constant_load();
-  CableElementResult res;
-  const CableEvalRequest request{};
-  const bool has_inertia = state.a.size() == n && state.a.squaredNorm() > 0.0;
+  const bool inertia = state.a.size() == n;
+  const auto frames = ws.frames_at(model, state.t);
+  const auto q = as_span(state.q), v = as_span(state.v);
+
   for_each_element(model, state.q, state.v,
-                   [&](Index, Index j, const CableData& c, Index base, const Vec12& e,
-                       const Vec12& e_dot) {
-                     evaluate_cable_element(c.section, c.elements[j], e, e_dot, request, res);
-                     rq.segment<12>(base) += res.force;
-                     if (has_inertia) {
-                       const Mat4& m4 = c.mass[j];
-                       for (int p = 0; p < 4; ++p)
-                         for (int s = 0; s < 4; ++s)
-                           rq.segment<3>(base + 3 * p) += m4(p, s) * state.a.segment<3>(base + 3 * s);
-                     }
+                   [&](Index, Index j, const CableData& c, Index base, const Vec12& e, const Vec12& e_dot) {
+                     evaluate_cable_element(c.section, c.elements[j], e, e_dot, {}, ws.element);
+                     rq.segment<12>(base) += ws.element.force;
+                     if (inertia) add_mass_times(c.mass[j], base, state.a, rq);
                    });
-  for (const NodeConstraintData& d : model.constraints()) {
-    const Eigen::Matrix<double, 6, 1> x = state.q.segment<6>(d.node_coordinate);
-    for (int k = 0; k < d.law.rows; ++k) {
-      const double lam = state.lambda[d.first_row - n + k];
-      rq.segment<6>(d.node_coordinate) += d.law.g.row(k).transpose() * lam;
-      r[d.first_row + k] = d.law.residual(k, x);
-    }
+  if (inertia)
+    for (const BodyData& b : model.bodies()) add_mass_times(b.mass, b.first_coordinate, state.a, rq);
+
+  for (const auto& f : model.point_forces()) {
+    evaluate(f.element, state.t, ws.force);
+    subtract_force(f.blocks, ws.force, load_factor, rq);
+  }
+  for (const auto& f : model.body_torques()) {
+    evaluate(f.element, q, state.t, ws.force);
+    subtract_force(f.blocks, ws.force, load_factor, rq);
+  }
+  for (const auto& f : model.spring_dampers()) {
+    evaluate(f.element, q, v, frames, ws.force);
+    subtract_force(f.blocks, ws.force, 1.0, rq);
+  }
+  for (const auto& f : model.drives()) {
+    evaluate(f.element, q, v, state.t, ws.force);
+    subtract_force(f.blocks, ws.force, 1.0, rq);
+  }
+
+  BlockVec gu, gw;
+  for (Index i = 0; i < model.multiplier_count(); ++i) {
+    const DotConstraintRow& row = model.rows()[i];
+    const AffineVectorState u = evaluate(row.u, q, {}, frames);
+    const AffineVectorState w = evaluate(row.w, q, {}, frames);
+    r[n + i] = u.value.dot(w.value) + row.c;
+    const double lambda = state.lambda[i];
+    if (lambda == 0.0) continue;
+    gradient_blocks(row, u, w, false, gu, gw);
+    for (int k = 0; k < row.u.term_count; ++k) rq.segment<3>(row.u.terms[k].block) += lambda * gu[k];
+    for (int k = 0; k < row.w.term_count; ++k) rq.segment<3>(row.w.terms[k].block) += lambda * gw[k];
   }
 }
 
 void assemble_iteration_matrix(const Model& model, const SystemState& state,
-                               const IterationWeights& w, std::span<double> values) {
+                               const IterationWeights& w, Workspace& ws, std::span<double> values) {
   std::fill(values.begin(), values.end(), 0.0);
-  CableElementResult res;
   const CableEvalRequest request{.stiffness = w.w_q != 0.0, .damping_matrix = w.w_v != 0.0};
+  const auto frames = ws.frames_at(model, state.t);
+  const auto q = as_span(state.q), v = as_span(state.v);
+
   for_each_element(model, state.q, state.v,
-                   [&](Index ci, Index j, const CableData& c, Index, const Vec12& e,
-                       const Vec12& e_dot) {
+                   [&](Index ci, Index j, const CableData& c, Index, const Vec12& e, const Vec12& e_dot) {
                      const auto& slots = model.element_slots(ci, j);
                      const bool damping = request.damping_matrix && c.section.has_damping();
                      if (request.stiffness || damping) {
-                       evaluate_cable_element(c.section, c.elements[j], e, e_dot, request, res);
+                       evaluate_cable_element(c.section, c.elements[j], e, e_dot, request, ws.element);
                        for (int k = 0; k < 144; ++k) {
-                         double value = w.w_q * res.stiffness.data()[k];
-                         if (damping) value += w.w_v * res.damping.data()[k];
+                         double value = w.w_q * ws.element.stiffness.data()[k];
+                         if (damping) value += w.w_v * ws.element.damping.data()[k];
                          values[slots[k]] += value;
                        }
                      }
-                     if (w.w_a != 0.0) {
-                       // M = m4 ⊗ I₃: only the diagonal of each 3×3 block is non-zero.
-                       const Mat4& m4 = c.mass[j];
-                       for (int s = 0; s < 4; ++s)
-                         for (int p = 0; p < 4; ++p)
-                           for (int d = 0; d < 3; ++d)
-                             values[slots[12 * (3 * s + d) + 3 * p + d]] += w.w_a * m4(p, s);
-                     }
+                     if (w.w_a != 0.0) add_mass_matrix(c.mass[j], slots, w.w_a, values);
                    });
-  for (const NodeConstraintData& d : model.constraints()) {
-    for (int r = 0; r < d.law.rows; ++r)
-      for (int k = 0; k < 6; ++k)
-        if (d.slot_phi_q[r][k] >= 0) {
-          values[d.slot_phi_q[r][k]] += d.law.g(r, k);
-          values[d.slot_phi_qt[r][k]] += d.law.g(r, k);
-        }
+  if (w.w_a != 0.0)
+    for (Index b = 0; b < static_cast<Index>(model.bodies().size()); ++b)
+      add_mass_matrix(model.bodies()[b].mass, model.body_slots(b), w.w_a, values);
+
+  if (w.w_q != 0.0)
+    for (const auto& f : model.body_torques()) {
+      evaluate(f.element, q, state.t, ws.force);
+      subtract_force_jacobian(f.slots, ws.force, w.w_q * w.load_factor, 0.0, values);
+    }
+  for (const auto& f : model.spring_dampers()) {
+    evaluate(f.element, q, v, frames, ws.force);
+    subtract_force_jacobian(f.slots, ws.force, w.w_q, w.w_v, values);
   }
+  for (const auto& f : model.drives()) {
+    evaluate(f.element, q, v, state.t, ws.force);
+    subtract_force_jacobian(f.slots, ws.force, w.w_q, w.w_v, values);
+  }
+
+  // Constraint blocks Φ_q, Φ_qᵀ and the geometric stiffness w_q ∂(Φ_qᵀλ)/∂q = w_q λ α_k β_m I₃.
+  BlockVec gu, gw;
+  for (Index i = 0; i < model.multiplier_count(); ++i) {
+    const DotConstraintRow& row = model.rows()[i];
+    const AffineVectorState u = evaluate(row.u, q, {}, frames);
+    const AffineVectorState wv = evaluate(row.w, q, {}, frames);
+    gradient_blocks(row, u, wv, false, gu, gw);
+    const auto slots = model.row_slots(i);
+    std::size_t s = 0;
+    for (int k = 0; k < row.u.term_count; ++k) {
+      for (int d = 0; d < 3; ++d) values[slots[s++]] += gu[k][d];
+      for (int d = 0; d < 3; ++d) values[slots[s++]] += gu[k][d];
+    }
+    for (int k = 0; k < row.w.term_count; ++k) {
+      for (int d = 0; d < 3; ++d) values[slots[s++]] += gw[k][d];
+      for (int d = 0; d < 3; ++d) values[slots[s++]] += gw[k][d];
+    }
+    const double g = w.w_q * state.lambda[i];
+    if (g == 0.0) continue;
+    // add_geometric_stiffness visits the (u-term, w-term) pairs in the order the slots were made.
+    const auto geo = model.geometric_slots(i);
+    std::size_t t = 0;
+    add_geometric_stiffness(row, g, [&](Index, Index, double c) {
+      for (int d = 0; d < 3; ++d) values[geo[t++]] += c;
+    });
+  }
+}
+
+void assemble_velocity_constraint(const Model& model, const SystemState& state, Workspace& ws,
+                                  std::span<double> out) {
+  const auto frames = ws.frames_at(model, state.t);
+  for (Index i = 0; i < model.multiplier_count(); ++i) {
+    const DotConstraintValues c = evaluate(model.rows()[i], as_span(state.q), as_span(state.v), frames);
+    out[i] = c.phi_q_v + c.phi_t;
+  }
+}
+
+void assemble_acceleration_rhs(const Model& model, const SystemState& state, Workspace& ws,
+                               std::span<double> out) {
+  const auto frames = ws.frames_at(model, state.t);
+  for (Index i = 0; i < model.multiplier_count(); ++i)
+    out[i] = evaluate(model.rows()[i], as_span(state.q), as_span(state.v), frames).gamma;
+}
+
+Energies energies(const Model& model, const SystemState& state, Workspace& ws) {
+  Energies e;
+  e.kinetic = kinetic_energy(model, state.v);
+  e.strain = strain_energy(model, state.q);
+  const auto frames = ws.frames_at(model, state.t);
+  for (const auto& f : model.spring_dampers()) e.spring += potential_energy(f.element, as_span(state.q), frames);
+  e.load = -model.constant_load().dot(state.q);
+  return e;
+}
+
+Momentum momentum(const Model& model, const VecX& q, const VecX& v) {
+  Momentum p;
+  // ∫ρ ṙ = Σ_s (Σ_p t_p m4(p, s)) v_s with t the translation field; ∫ρ r × ṙ = Σ m4(p, s) x_p × v_s.
+  auto add = [&](const Mat4& m4, Index base, const Vec4& translation) {
+    for (int a = 0; a < 4; ++a)
+      for (int s = 0; s < 4; ++s) {
+        const Vec3 vs = v.segment<3>(base + 3 * s);
+        p.linear += translation[a] * m4(a, s) * vs;
+        p.angular += m4(a, s) * q.segment<3>(base + 3 * a).cross(vs);
+      }
+  };
+  for (const CableData& c : model.cables())
+    for (Index j = 0; j < static_cast<Index>(c.elements.size()); ++j)
+      add(c.mass[j], c.first_coordinate + 6 * j, Vec4(1, 0, 1, 0));
+  for (const BodyData& b : model.bodies()) add(b.mass, b.first_coordinate, Vec4(1, 0, 0, 0));
+  return p;
+}
+
+ConstraintViolation constraint_violation(const Model& model, const SystemState& state, Workspace& ws) {
+  ConstraintViolation cv;
+  const auto frames = ws.frames_at(model, state.t);
+  for (Index i = 0; i < model.multiplier_count(); ++i) {
+    const DotConstraintValues c = evaluate(model.rows()[i], as_span(state.q), as_span(state.v), frames);
+    if (std::abs(c.phi) > cv.position) cv.position = std::abs(c.phi), cv.position_row = model.coordinate_count() + i;
+    const double vel = std::abs(c.phi_q_v + c.phi_t);
+    if (vel > cv.velocity) cv.velocity = vel, cv.velocity_row = model.coordinate_count() + i;
+  }
+  return cv;
+}
+
+void assemble_iteration_matrix(const Model& model, const SystemState& state,
+                               const IterationWeights& weights, std::span<double> values) {
+  Workspace ws(model);
+  assemble_iteration_matrix(model, state, weights, ws, values);
 }
 
 double strain_energy(const Model& model, const VecX& q) {
   double u = 0.0;
   CableElementResult res;
-  for_each_element(model, q, q,
-                   [&](Index, Index j, const CableData& c, Index, const Vec12& e, const Vec12&) {
-                     CableSection elastic = c.section;
-                     elastic.axial_damping = elastic.bending_damping = 0.0;
-                     evaluate_cable_element(elastic, c.elements[j], e, Vec12::Zero(), {}, res);
-                     u += res.energy;
-                   });
+  for_each_element(model, q, q, [&](Index, Index j, const CableData& c, Index, const Vec12& e, const Vec12&) {
+    CableSection elastic = c.section;
+    elastic.axial_damping = elastic.bending_damping = 0.0;
+    evaluate_cable_element(elastic, c.elements[j], e, Vec12::Zero(), {}, res);
+    u += res.energy;
+  });
   return u;
 }
 
-double load_potential(const Model& model, const VecX& q) { return -model.constant_load().dot(q); }
-
 double kinetic_energy(const Model& model, const VecX& v) {
   double t = 0.0;
-  for (const CableData& c : model.cables()) {
-    for (Index j = 0; j < static_cast<Index>(c.elements.size()); ++j) {
-      const Index base = c.first_coordinate + 6 * j;
-      for (int p = 0; p < 4; ++p)
-        for (int s = 0; s < 4; ++s)
-          t += 0.5 * c.mass[j](p, s) * v.segment<3>(base + 3 * p).dot(v.segment<3>(base + 3 * s));
-    }
-  }
+  auto add = [&](const Mat4& m4, Index base) {
+    for (int p = 0; p < 4; ++p)
+      for (int s = 0; s < 4; ++s) t += 0.5 * m4(p, s) * v.segment<3>(base + 3 * p).dot(v.segment<3>(base + 3 * s));
+  };
+  for (const CableData& c : model.cables())
+    for (Index j = 0; j < static_cast<Index>(c.elements.size()); ++j) add(c.mass[j], c.first_coordinate + 6 * j);
+  for (const BodyData& b : model.bodies()) add(b.mass, b.first_coordinate);
   return t;
 }
 

@@ -17,20 +17,32 @@ Index Model::node_coordinate(Index cable, Index node) const {
 }
 
 std::string Model::describe_row(Index row) const {
-  static const char* const kComponent[6] = {"r.x", "r.y", "r.z", "r_x.x", "r_x.y", "r_x.z"};
+  static const char* const kNode[6] = {"r.x", "r.y", "r.z", "r_x.x", "r_x.y", "r_x.z"};
+  static const char* const kBody[12] = {"r_O.x", "r_O.y", "r_O.z", "a1.x", "a1.y", "a1.z",
+                                        "a2.x",  "a2.y",  "a2.z",  "a3.x", "a3.y", "a3.z"};
   if (row >= 0 && row < n_coordinates_) {
     for (const CableData& c : cables_) {
       const Index local = row - c.first_coordinate;
       if (local >= 0 && local < 6 * c.node_count)
-        return "cable '" + c.name + "' node " + std::to_string(local / 6) + " " + kComponent[local % 6];
+        return "cable '" + c.name + "' node " + std::to_string(local / 6) + " " + kNode[local % 6];
+    }
+    for (const BodyData& b : bodies_) {
+      const Index local = row - b.first_coordinate;
+      if (local >= 0 && local < 12) return "body '" + b.name + "' " + kBody[local];
     }
   }
-  for (const NodeConstraintData& d : constraints_) {
-    const Index local = row - d.first_row;
-    if (local >= 0 && local < d.law.rows)
-      return "constraint '" + d.name + "' row " + std::to_string(local);
+  for (const ConstraintData& c : constraints_) {
+    const Index local = row - c.first_row;
+    if (local >= 0 && local < c.row_count)
+      return "constraint '" + c.name + "' row " + std::to_string(local);
   }
   return "row " + std::to_string(row) + " (outside the system)";
+}
+
+Index Model::find_constraint(const std::string& name) const {
+  for (std::size_t k = 0; k < constraints_.size(); ++k)
+    if (constraints_[k].name == name) return static_cast<Index>(k);
+  return -1;
 }
 
 }  // namespace ancf

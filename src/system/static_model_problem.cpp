@@ -2,9 +2,10 @@
 
 namespace ancf {
 
-StaticModelProblem::StaticModelProblem(const Model& model) : model_(model) {
+StaticModelProblem::StaticModelProblem(const Model& model) : model_(model), workspace_(model) {
   state_ = SystemState::initial(model);
-  state_.v.setZero();  // statics: no damping forces, no inertia
+  state_.v.setZero();  // statics: no damping forces
+  state_.a.resize(0);  // and no inertia term
 }
 
 void StaticModelProblem::load_state(std::span<const double> y) {
@@ -16,14 +17,14 @@ void StaticModelProblem::load_state(std::span<const double> y) {
 void StaticModelProblem::residual(std::span<const double> y, double load_factor,
                                   std::span<double> r) {
   load_state(y);
-  assemble_residual(model_, state_, load_factor, r);
+  assemble_residual(model_, state_, load_factor, workspace_, r);
 }
 
-void StaticModelProblem::jacobian(std::span<const double> y, double /*load_factor*/,
+void StaticModelProblem::jacobian(std::span<const double> y, double load_factor,
                                   std::span<double> values) {
-  // Dead loads do not depend on q, so the load factor does not enter ∂R/∂y.
   load_state(y);
-  assemble_iteration_matrix(model_, state_, IterationWeights{1.0, 0.0, 0.0}, values);
+  assemble_iteration_matrix(model_, state_, IterationWeights{1.0, 0.0, 0.0, load_factor},
+                            workspace_, values);
 }
 
 VecX StaticModelProblem::initial_guess() const {

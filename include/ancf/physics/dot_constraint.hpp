@@ -83,4 +83,21 @@ void gradient_blocks(const DotConstraintRow& row, const AffineVectorState& u,
                      const AffineVectorState& w, bool velocity, std::span<Vec3> out_u,
                      std::span<Vec3> out_w);
 
+/// Geometric stiffness of one row, λ ∂(Φ_qᵀ)/∂q = λ Σ_{k∈u, m∈w} α_k β_m (I₃ at (b_k, b_m) and at
+/// (b_m, b_k)): constant in q and t, symmetric. Calls add(row_block, col_block, coefficient) once per
+/// 3×3 block, meaning K(row_block + i, col_block + i) += coefficient for i = 0, 1, 2. Both orders
+/// are visited, so a pair sharing one block (a_i·a_i) correctly contributes 2λαβ to it; blocks
+/// repeat, and the callback must accumulate.
+template <class Add>
+void add_geometric_stiffness(const DotConstraintRow& row, double lambda, Add&& add) {
+  for (int k = 0; k < row.u.term_count; ++k)
+    for (int m = 0; m < row.w.term_count; ++m) {
+      const BlockTerm& a = row.u.terms[k];
+      const BlockTerm& b = row.w.terms[m];
+      const double coefficient = lambda * a.coefficient * b.coefficient;
+      add(a.block, b.block, coefficient);
+      add(b.block, a.block, coefficient);
+    }
+}
+
 }  // namespace ancf

@@ -1,46 +1,95 @@
-// Global residual, iteration matrix and energies of a Model, written into preallocated storage.
+// Global residual, iteration matrix, energies, momenta and constraint violations of a Model,
+// written into preallocated storage (no heap allocation per call once a Workspace exists).
 #pragma once
 
 #include <span>
+#include <string>
+#include <vector>
 
 #include "ancf/system/model.hpp"
 
 namespace ancf {
 
-/// State of the system at time t: coordinates q [m, -], velocities v = q', accelerations a = q''
-/// and multipliers λ. Sizes: q, v, a: model.coordinate_count(); λ: model.multiplier_count().
+/// State at time t: coordinates q, velocities v = q', accelerations a = q'' and multipliers λ.
+/// Sizes: q, v, a: model.coordinate_count(); λ: model.multiplier_count().
 struct SystemState {
   double t = 0.0;
   VecX q, v, a, lambda;
 
-  /// Zero state sized for `model`, q and v taken from the model's initial values.
+  /// State at t = 0 with q, v from the model's initial values, a = 0, λ = 0.
   static SystemState initial(const Model& model);
 };
 
+/// Scratch storage of the assembly functions; create once per model and reuse.
+struct Workspace {
+  std::vector<FrameKinematics> frames;  ///< driven-frame kinematics at `frames_time`
+  double frames_time = 0.0;
+  bool frames_valid = false;
+  CableElementResult element;
+  ForceResult force;
+  explicit Workspace(const Model& model);
+  /// Frame kinematics at t (recomputed only when t changes).
+  std::span<const FrameKinematics> frames_at(const Model& model, double t);
+};
+
 /// Weights of the iteration matrix w_q ∂R/∂q + w_v ∂R/∂v + w_a ∂R/∂a of the dynamic rows.
+/// Statics: (1, 0, 0). Generalized-α: (1, γ/(βh), 1/(βh²)). IDA: the q-block uses (1, 0, 0), the
+/// v-block (0, 1, c_j).
 struct IterationWeights {
   double w_q = 1.0;
   double w_v = 0.0;
   double w_a = 0.0;
+  double load_factor = 1.0;  ///< s of assemble_residual (scales ∂Q_loads/∂q of body torques)
 };
 
 /// Residual of the equations of motion and constraints (DESIGN §1, S6):
-///   rows [0, n):   M a + F(q, v) − s·Q + Φ_qᵀ λ
-///   rows [n, n+m): Φ(q)
-/// with s the load factor (1 for dynamics). `r` has model.system_size() entries.
+///   rows [0, n):   M a + F(q, v) − s·Q_loads(t) − Q_elements(q, v, t) + Φ_qᵀ λ
+///   rows [n, n+m): Φ(q, t)
+/// Q_loads are gravity, dead nodal loads, point forces and body torques (scaled by the load
+/// factor s, 1 in dynamics); Q_elements are spring-dampers and drives. `r` has system_size().
 void assemble_residual(const Model& model, const SystemState& state, double load_factor,
-                       std::span<double> r);
+                       Workspace& ws, std::span<double> r);
 
-/// Values of [w_q K + w_v D + w_a M, Φ_qᵀ; Φ_q, 0] in model.pattern(), with K = ∂(F − sQ +
-/// Φ_qᵀλ)/∂q and D = ∂F/∂v. `values` has model.pattern().nonzeros() entries.
+/// Values of [w_q K + w_v D + w_a M, Φ_qᵀ; Φ_q, 0] in model.pattern() with
+/// K = ∂(F − sQ + Φ_qᵀλ)/∂q and D = ∂(F − Q)/∂v. `values` has pattern().nonzeros() entries.
+void assemble_iteration_matrix(const Model& model, const SystemState& state,
+                               const IterationWeights& weights, Workspace& ws,
+                               std::span<double> values);
+
+/// Φ_q v + Φ_t (size m): the velocity-level constraint.
+void assemble_velocity_constraint(const Model& model, const SystemState& state, Workspace& ws,
+                                  std::span<double> out);
+/// γ = −[(Φ_q v)_q v + 2Φ_qt v + Φ_tt] (size m): Φ_q a = γ on the constraint manifold.
+void assemble_acceleration_rhs(const Model& model, const SystemState& state, Workspace& ws,
+                               std::span<double> out);
+
+/// Energies [J]. potential = strain + springs + constant-load potential (−Q_constᵀq).
+struct Energies {
+  double kinetic = 0.0, strain = 0.0, spring = 0.0, load = 0.0;
+  [[nodiscard]] double potential() const { return strain + spring + load; }
+  [[nodiscard]] double total() const { return kinetic + potential(); }
+};
+[[nodiscard]] Energies energies(const Model& model, const SystemState& state, Workspace& ws);
+
+/// Linear momentum [kg m/s] and angular momentum about the origin [kg m²/s] of cables and bodies
+/// (∫ρ ṙ dV, ∫ρ r × ṙ dV, exact through the consistent mass matrices).
+struct Momentum {
+  Vec3 linear = Vec3::Zero(), angular = Vec3::Zero();
+};
+[[nodiscard]] Momentum momentum(const Model& model, const VecX& q, const VecX& v);
+
+/// Largest |Φ| and |Φ_q v + Φ_t| with the rows they occur in (model.describe_row).
+struct ConstraintViolation {
+  double position = 0.0, velocity = 0.0;
+  Index position_row = -1, velocity_row = -1;
+};
+[[nodiscard]] ConstraintViolation constraint_violation(const Model& model, const SystemState& state,
+                                                       Workspace& ws);
+
+// Convenience overloads that allocate a workspace (not for time-stepping loops).
 void assemble_iteration_matrix(const Model& model, const SystemState& state,
                                const IterationWeights& weights, std::span<double> values);
-
-/// Strain energy of all cables [J].
 [[nodiscard]] double strain_energy(const Model& model, const VecX& q);
-/// Potential of the constant loads, −Qᵀq [J] (gravity and dead loads).
-[[nodiscard]] double load_potential(const Model& model, const VecX& q);
-/// Kinetic energy ½ vᵀ M v [J].
 [[nodiscard]] double kinetic_energy(const Model& model, const VecX& v);
 
 }  // namespace ancf

@@ -1,5 +1,6 @@
-// The immutable model: numbering, element data, constraints, loads and the fixed sparse pattern.
-// Built only by ModelBuilder::finalize(); read by the assembly functions.
+// The immutable model: numbering, element and body data, constraint rows, force elements, loads
+// and the fixed sparse pattern with precomputed scatter slots. Built only by
+// ModelBuilder::finalize(); read by the assembly functions (assembly.hpp).
 #pragma once
 
 #include <array>
@@ -8,14 +9,16 @@
 
 #include "ancf/core/sparsity_pattern.hpp"
 #include "ancf/physics/cable_element.hpp"
-#include "ancf/physics/linear_node_constraint.hpp"
+#include "ancf/physics/dot_constraint.hpp"
+#include "ancf/physics/driven_frame.hpp"
+#include "ancf/physics/force_elements.hpp"
+#include "ancf/physics/rigid_body.hpp"
 #include "ancf/system/cable_geometry.hpp"
 
 namespace ancf {
 
-/// One cable: its section, its first global coordinate and its elements' reference data.
-/// Node k of the cable owns coordinates [first_coordinate + 6k, first_coordinate + 6k + 6);
-/// element j therefore owns the contiguous block [first_coordinate + 6j, … + 12).
+/// One cable. Node k owns coordinates [first_coordinate + 6k, … + 6); element j owns the
+/// contiguous block [first_coordinate + 6j, … + 12).
 struct CableData {
   std::string name;
   CableSection section;
@@ -25,14 +28,29 @@ struct CableData {
   std::vector<Mat4> mass;  ///< scalar 4×4 consistent mass per element (⊗ I₃)
 };
 
-/// A constraint on one node, with its multiplier rows and precomputed matrix slots.
-struct NodeConstraintData {
+/// One rigid body: coordinates [first_coordinate, … + 12) = [r_O, a₁, a₂, a₃].
+struct BodyData {
   std::string name;
-  LinearNodeConstraint law;
-  Index node_coordinate = 0;  ///< global index of the node's first coordinate
-  Index first_row = 0;        ///< global index of its first multiplier (≥ coordinate count)
-  std::array<std::array<Index, 6>, 3> slot_phi_q{};   ///< (row, coord) → value slot of Φ_q
-  std::array<std::array<Index, 6>, 3> slot_phi_qt{};  ///< (coord, row) → value slot of Φ_qᵀ
+  RigidBodyInertia inertia;
+  Index first_coordinate = 0;
+  Mat4 mass;  ///< natural_mass_matrix (⊗ I₃)
+};
+
+/// A named constraint: rows [first_row, first_row + row_count) of the system (multiplier indices),
+/// row r of the model being rows()[r − coordinate_count()].
+struct ConstraintData {
+  std::string name;
+  Index first_row = 0;
+  int row_count = 0;
+};
+
+/// A force element with its blocks and value slots ((3·blocks)² entries, column-major; −1 = none).
+template <class Element>
+struct ForceElementData {
+  std::string name;
+  Element element;
+  BlockList blocks;
+  std::vector<Index> slots;
 };
 
 class ModelBuilder;
@@ -41,12 +59,20 @@ class ModelBuilder;
 class Model {
  public:
   [[nodiscard]] Index coordinate_count() const { return n_coordinates_; }
-  [[nodiscard]] Index multiplier_count() const { return n_multipliers_; }
-  [[nodiscard]] Index system_size() const { return n_coordinates_ + n_multipliers_; }
+  [[nodiscard]] Index multiplier_count() const { return static_cast<Index>(rows_.size()); }
+  [[nodiscard]] Index system_size() const { return n_coordinates_ + multiplier_count(); }
 
   [[nodiscard]] const std::vector<CableData>& cables() const { return cables_; }
-  [[nodiscard]] const std::vector<NodeConstraintData>& constraints() const { return constraints_; }
-  /// Constant generalised external force (gravity and dead nodal loads) [N].
+  [[nodiscard]] const std::vector<BodyData>& bodies() const { return bodies_; }
+  [[nodiscard]] const std::vector<DrivenFrame>& frames() const { return frames_; }
+  [[nodiscard]] const std::vector<ConstraintData>& constraints() const { return constraints_; }
+  [[nodiscard]] const std::vector<DotConstraintRow>& rows() const { return rows_; }
+  [[nodiscard]] const std::vector<ForceElementData<SpringDamper>>& spring_dampers() const { return springs_; }
+  [[nodiscard]] const std::vector<ForceElementData<PointForce>>& point_forces() const { return point_forces_; }
+  [[nodiscard]] const std::vector<ForceElementData<BodyTorque>>& body_torques() const { return torques_; }
+  [[nodiscard]] const std::vector<ForceElementData<RevoluteDrive>>& drives() const { return drives_; }
+
+  /// Constant generalised external force (gravity on cables and bodies, dead nodal loads) [N].
   [[nodiscard]] const VecX& constant_load() const { return constant_load_; }
   [[nodiscard]] const VecX& initial_coordinates() const { return q0_; }
   [[nodiscard]] const VecX& initial_velocities() const { return v0_; }
@@ -57,23 +83,48 @@ class Model {
   [[nodiscard]] const std::array<Index, 144>& element_slots(Index cable, Index element) const {
     return element_slots_[element_slot_offset_[cable] + element];
   }
+  /// Value slots of body b's 12×12 block, column-major.
+  [[nodiscard]] const std::array<Index, 144>& body_slots(Index body) const { return body_slots_[body]; }
+
+  /// Slots of row r (0-based among the multipliers): for each term of u then of w, 3 slots of
+  /// Φ_q followed by 3 slots of Φ_qᵀ, starting at row_slot_offset(r).
+  [[nodiscard]] std::span<const Index> row_slots(Index r) const {
+    return {row_slots_.data() + row_slot_offset_[r], row_slots_.data() + row_slot_offset_[r + 1]};
+  }
+  /// Slots of ∂(Φ_qᵀλ)/∂q of row r: for each (k in u, m in w) pair, 3 slots (b_k+d, b_m+d) then 3
+  /// slots (b_m+d, b_k+d), d = 0, 1, 2.
+  [[nodiscard]] std::span<const Index> geometric_slots(Index r) const {
+    return {geometric_slots_.data() + geometric_slot_offset_[r],
+            geometric_slots_.data() + geometric_slot_offset_[r + 1]};
+  }
 
   /// Global coordinate index of a node of a cable (node < 0 counts from the end: −1 = last).
   [[nodiscard]] Index node_coordinate(Index cable, Index node) const;
-  /// "cable 'rope' node 3 r_x.y" or "constraint 'clamp' row 1" for a row of the system.
+  /// "cable 'rope' node 3 r_x.y", "body 'pole' a2.z" or "constraint 'clamp' row 1".
   [[nodiscard]] std::string describe_row(Index row) const;
+  /// Index of a constraint by name, or −1.
+  [[nodiscard]] Index find_constraint(const std::string& name) const;
 
  private:
   friend class ModelBuilder;
   Index n_coordinates_ = 0;
-  Index n_multipliers_ = 0;
   std::vector<CableData> cables_;
-  std::vector<NodeConstraintData> constraints_;
+  std::vector<BodyData> bodies_;
+  std::vector<DrivenFrame> frames_;
+  std::vector<ConstraintData> constraints_;
+  std::vector<DotConstraintRow> rows_;
+  std::vector<ForceElementData<SpringDamper>> springs_;
+  std::vector<ForceElementData<PointForce>> point_forces_;
+  std::vector<ForceElementData<BodyTorque>> torques_;
+  std::vector<ForceElementData<RevoluteDrive>> drives_;
   VecX constant_load_;
   VecX q0_, v0_;
   SparsityPattern pattern_;
   std::vector<Index> element_slot_offset_;
   std::vector<std::array<Index, 144>> element_slots_;
+  std::vector<std::array<Index, 144>> body_slots_;
+  std::vector<Index> row_slots_, row_slot_offset_;
+  std::vector<Index> geometric_slots_, geometric_slot_offset_;
 };
 
 }  // namespace ancf

@@ -1,11 +1,18 @@
-// Collects cables, boundary conditions and loads; finalize() numbers the unknowns, builds the
-// fixed sparsity pattern and the scatter slots and returns the immutable Model.
+// Collects cables, bodies, driven frames, constraints, force elements and loads; finalize()
+// numbers the unknowns, checks the constraints for redundancy, builds the fixed sparsity pattern
+// and the scatter slots and returns the immutable Model.
+//
+// Attachments are placed by the initial configuration: e.g. attach_node_to_body() fixes the node
+// at the body point where it starts, revolute() takes a global point and axis and derives the
+// body-frame data, so a scene is consistent by construction.
 #pragma once
 
-#include <optional>
+#include <functional>
 #include <string>
+#include <variant>
 #include <vector>
 
+#include "ancf/physics/joints.hpp"
 #include "ancf/system/model.hpp"
 
 namespace ancf {
@@ -16,27 +23,84 @@ struct NodeRef {
   Index node = 0;
 };
 
+/// Where a force element attaches: ground point (global), cable node position, body point
+/// (body frame), or driven-frame point (frame coordinates).
+struct GroundPoint {
+  Vec3 position;
+};
+struct BodyPoint {
+  Index body = 0;
+  Vec3 position;
+};
+struct FramePoint {
+  int frame = 0;
+  Vec3 position;
+};
+using AttachmentPoint = std::variant<GroundPoint, NodeRef, BodyPoint, FramePoint>;
+
 class ModelBuilder {
  public:
+  // --- components ---------------------------------------------------------------------------
   /// Add a cable whose stress-free reference is `reference` (its nodal coordinates define J₀ and
   /// κ₀). The initial configuration is the reference unless set_initial_configuration() is called.
-  /// Returns the cable index. Throws ModelError on a non-physical section or geometry.
   Index add_cable(std::string name, const CableGeometry& reference, const CableSection& section);
   /// Start cable `cable` from other nodal coordinates (same node count) and velocities (optional).
   void set_initial_configuration(Index cable, const CableGeometry& current,
                                  const std::vector<NodeCoordinates>* velocities = nullptr);
+  /// Add a rigid body with origin at `position`, rotation `rotation` (orthonormal, det +1),
+  /// origin velocity and angular velocity (global frame). Its six orthonormality rows are added
+  /// at finalize(). Returns the body index.
+  Index add_body(std::string name, const RigidBodyInertia& inertia, const Vec3& position,
+                 const Mat3& rotation = Mat3::Identity(), const Vec3& velocity = Vec3::Zero(),
+                 const Vec3& angular_velocity = Vec3::Zero());
+  /// Add a frame with prescribed motion; returns its index.
+  int add_driven_frame(DrivenFrame frame);
 
-  /// Uniform gravitational acceleration [m/s²] acting on all cables (consistent nodal loads).
+  // --- loads --------------------------------------------------------------------------------
+  /// Uniform gravitational acceleration [m/s²] on all cables and bodies (consistent loads).
   void set_gravity(const Vec3& g) { gravity_ = g; }
   /// Dead force [N] at a node.
   void add_node_force(NodeRef node, const Vec3& force);
+  /// Force [N] at a point, constant or F(t).
+  void add_point_force(std::string name, const AttachmentPoint& point, const Vec3& force,
+                       std::function<Vec3(double)> time_function = {});
+  /// Torque [N m] on a body, constant or τ(t).
+  void add_body_torque(std::string name, Index body, const Vec3& torque,
+                       std::function<Vec3(double)> time_function = {});
+  /// Spring-damper between two points; rest_length < 0 means "the initial distance".
+  void add_spring_damper(std::string name, const AttachmentPoint& a, const AttachmentPoint& b,
+                         double stiffness, double damping, double rest_length = -1.0);
+  /// Torque-limited PD drive on the revolute joint `joint` (added before with revolute() or
+  /// revolute_to_ground()); θ = 0 at the initial configuration, positive about the joint axis.
+  void add_revolute_drive(std::string name, const std::string& joint, AngleLaw reference,
+                          double kp, double kd, double torque_max);
 
-  /// Pin the node position to `target` [m] (3 constraint rows).
+  // --- constraints on cable nodes -------------------------------------------------------------
+  /// Node position fixed at `target` [m] (3 rows).
   void pin(std::string name, NodeRef node, const Vec3& target);
-  /// Keep the node slope parallel to `direction` (2 rows). Pin + align = clamp.
+  /// Node slope kept parallel to `direction` (2 rows). Pin + align_slope = clamp.
   void align_slope(std::string name, NodeRef node, const Vec3& direction);
+  /// Node position fixed to the body point where the node starts (3 rows).
+  void attach_node_to_body(std::string name, NodeRef node, Index body);
+  /// Node slope kept parallel to the body-fixed direction of its initial slope (2 rows).
+  void align_slope_to_body(std::string name, NodeRef node, Index body);
+  /// Node position fixed to the driven-frame point where the node starts at t = 0 (3 rows).
+  void attach_node_to_frame(std::string name, NodeRef node, int frame);
+  /// Node slope parallel to the frame-fixed direction of its initial slope (2 rows).
+  void align_slope_to_frame(std::string name, NodeRef node, int frame);
+  /// Two nodes share their position (3 rows) and, with `slopes`, their slope (3 more rows).
+  void join_nodes(std::string name, NodeRef a, NodeRef b, bool slopes = false);
 
-  /// Number, build the pattern and slots. The builder is left empty.
+  // --- joints of rigid bodies (points and axes global, at the initial configuration) ----------
+  void spherical_to_ground(std::string name, Index body, const Vec3& point);
+  void revolute_to_ground(std::string name, Index body, const Vec3& point, const Vec3& axis);
+  void fixed_to_ground(std::string name, Index body);
+  void spherical(std::string name, Index body1, Index body2, const Vec3& point);
+  void revolute(std::string name, Index body1, Index body2, const Vec3& point, const Vec3& axis);
+  void fixed(std::string name, Index body1, Index body2);
+
+  /// Number, check for redundant constraints (ModelError naming them), build pattern and slots.
+  /// The builder is left empty.
   [[nodiscard]] Model finalize();
 
  private:
@@ -47,21 +111,56 @@ class ModelBuilder {
     CableGeometry initial;
     std::vector<NodeCoordinates> velocities;
   };
+  struct PendingBody {
+    std::string name;
+    RigidBodyInertia inertia;
+    Vec3 position;
+    Mat3 rotation;
+    Vec3 velocity, angular_velocity;
+  };
+  // Constraints and forces refer to entities by kind and index until numbering is known; they are
+  // stored as functions of the final coordinate offsets.
+  struct Offsets {
+    std::vector<Index> cable_first, body_first;
+    [[nodiscard]] Index node(NodeRef n) const { return cable_first[n.cable] + 6 * n.node; }
+    [[nodiscard]] Index body(Index b) const { return body_first[b]; }
+  };
   struct PendingConstraint {
     std::string name;
-    NodeRef node;
-    LinearNodeConstraint law;
+    std::function<ConstraintRows(const Offsets&)> rows;
+  };
+  struct RevoluteInfo {
+    std::string name;
+    Index base_body;  // −1: ground
+    Index body;
+    Vec3 axis;        // global, at the initial configuration
   };
   struct PendingForce {
-    NodeRef node;
-    Vec3 force;
+    std::string name;
+    std::function<void(const Offsets&, Model&)> add;
   };
+
   const PendingCable& cable_at(Index cable, const char* what) const;
-  Index resolve_node(NodeRef node, const char* what) const;
+  const PendingBody& body_at(Index body, const char* what) const;
+  NodeRef resolve(NodeRef node, const char* what) const;
+  const NodeCoordinates& initial_node(NodeRef node) const;
+  void require_new_name(const std::string& name, const char* what) const;
+  static AffineVector point_expression(const AttachmentPoint& p, const Offsets& o);
+  Vec3 point_position(const AttachmentPoint& p) const;
+  void add_constraint(std::string name, std::function<ConstraintRows(const Offsets&)> rows);
+  /// ModelError naming each constraint whose rows are linearly dependent on earlier rows at the
+  /// initial configuration (constraint_redundancy.cpp).
+  static void check_redundancy(const Model& m);
+  /// Fixed pattern and scatter slots of every block (model_pattern.cpp).
+  static void build_pattern_and_slots(Model& m);
 
   std::vector<PendingCable> cables_;
+  std::vector<PendingBody> bodies_;
+  std::vector<DrivenFrame> frames_;
   std::vector<PendingConstraint> constraints_;
+  std::vector<RevoluteInfo> revolutes_;
   std::vector<PendingForce> forces_;
+  std::vector<std::pair<NodeRef, Vec3>> node_forces_;
   Vec3 gravity_ = Vec3::Zero();
 };
 

@@ -25,7 +25,8 @@ class StaticModelProblem final : public StaticProblem {
  private:
   void load_state(std::span<const double> y);
   const Model& model_;
-  SystemState state_;  // workspace: q, λ copied from y, v = a = 0
+  SystemState state_;  // q, λ copied from y; v = 0 and no inertia
+  Workspace workspace_;
 };
 
 }  // namespace ancf

@@ -1,0 +1,90 @@
+// Detection of redundant constraints at finalize(): rows of Φ_q (at the initial configuration and
+// t = 0) that are linear combinations of earlier rows. A redundant set makes the iteration matrix
+// singular, so it must be reported by name before any solve (DESIGN §2).
+#include <Eigen/Dense>
+#include <map>
+#include <set>
+#include <string>
+
+#include "ancf/core/error.hpp"
+#include "ancf/system/model_builder.hpp"
+
+namespace ancf {
+namespace {
+
+// Rows are normalised to unit length; a row whose component orthogonal to the span of the
+// accepted rows is below this is dependent. Independent rows of a well-posed scene are O(1) apart
+// (angles between joint axes, unit directions), while a true dependency leaves round-off
+// (≈ 1e-15); √ε separates the two with a wide margin on either side.
+constexpr double kDependencyTolerance = 1.5e-8;
+
+}  // namespace
+
+void ModelBuilder::check_redundancy(const Model& m) {
+  const Index rows = m.multiplier_count();
+  if (rows == 0) return;
+  std::vector<FrameKinematics> frames;
+  for (const DrivenFrame& f : m.frames_) frames.push_back(f.at(0.0));
+  const VecX& q = m.q0_;
+  // Dense Φ_q over the columns the constraints touch (usually a small part of q).
+  std::map<Index, Index> column;
+  for (const DotConstraintRow& r : m.rows_)
+    for (const AffineVector* a : {&r.u, &r.w})
+      for (int k = 0; k < a->term_count; ++k)
+        for (int d = 0; d < 3; ++d) column.emplace(a->terms[k].block + d, 0);
+  Index next = 0;
+  for (auto& [global, local] : column) local = next++;
+  MatX jac = MatX::Zero(rows, next);
+  for (Index i = 0; i < rows; ++i) {
+    const DotConstraintRow& r = m.rows_[i];
+    const AffineVectorState u = evaluate(r.u, as_span(q), {}, frames);
+    const AffineVectorState w = evaluate(r.w, as_span(q), {}, frames);
+    std::array<Vec3, AffineVector::kMaxTerms> gu, gw;
+    gradient_blocks(r, u, w, false, gu, gw);
+    for (int k = 0; k < r.u.term_count; ++k)
+      for (int d = 0; d < 3; ++d) jac(i, column[r.u.terms[k].block + d]) += gu[k][d];
+    for (int k = 0; k < r.w.term_count; ++k)
+      for (int d = 0; d < 3; ++d) jac(i, column[r.w.terms[k].block + d]) += gw[k][d];
+  }
+
+  auto owner = [&](Index row) -> const ConstraintData& {
+    for (const ConstraintData& c : m.constraints_)
+      if (m.n_coordinates_ + row >= c.first_row && m.n_coordinates_ + row < c.first_row + c.row_count) return c;
+    return m.constraints_.front();
+  };
+
+  // Gram–Schmidt (twice, for stability) over the rows in order; accepted rows form the basis.
+  std::vector<Index> accepted;
+  MatX basis(next, 0);
+  std::string report;
+  for (Index i = 0; i < rows; ++i) {
+    const double norm = jac.row(i).norm();
+    VecX r = jac.row(i).transpose() / (norm > 0.0 ? norm : 1.0);
+    for (int pass = 0; pass < 2; ++pass)
+      if (basis.cols() > 0) r -= basis * (basis.transpose() * r);
+    if (norm > 0.0 && r.norm() > kDependencyTolerance) {
+      basis.conservativeResize(Eigen::NoChange, basis.cols() + 1);
+      basis.col(basis.cols() - 1) = r / r.norm();
+      accepted.push_back(i);
+      continue;
+    }
+    // Which accepted rows does it depend on? Least squares on the accepted rows.
+    std::set<std::string> partners;
+    if (!accepted.empty()) {
+      MatX a(next, static_cast<Index>(accepted.size()));
+      for (std::size_t k = 0; k < accepted.size(); ++k) a.col(k) = jac.row(accepted[k]).transpose();
+      const VecX coef = a.colPivHouseholderQr().solve(jac.row(i).transpose());
+      for (std::size_t k = 0; k < accepted.size(); ++k)
+        if (std::abs(coef[k]) > 1e-8 * coef.cwiseAbs().maxCoeff()) partners.insert(owner(accepted[k]).name);
+    }
+    const ConstraintData& c = owner(i);
+    report += "\n  constraint '" + c.name + "' row " + std::to_string(m.n_coordinates_ + i - c.first_row) +
+              (norm == 0.0 ? " has a zero Jacobian row"
+                           : " is a combination of rows of:");
+    for (const std::string& p : partners) report += " '" + p + "'";
+  }
+  if (!report.empty())
+    throw ModelError("redundant constraints at the initial configuration (remove or replace them):" + report);
+}
+
+}  // namespace ancf
