@@ -441,7 +441,7 @@ Model ModelBuilder::finalize() {
     m.constraints_.push_back({name, next + static_cast<Index>(m.rows_.size()), rows.count});
     for (int k = 0; k < rows.count; ++k) m.rows_.push_back(rows.rows[k]);
   };
-  for (const BodyData& b : m.bodies_) push_rows("body '" + b.name + "' orthonormality", body_orthonormality(b.first_coordinate));
+  for (const BodyData& b : m.bodies_) push_rows(b.name + ".orthonormality", body_orthonormality(b.first_coordinate));
   for (const PendingConstraint& pc : constraints_) push_rows(pc.name, pc.rows(o));
   for (const PendingForce& f : forces_) f.add(o, m);
 
