@@ -60,12 +60,25 @@ DotConstraintValues evaluate(const DotConstraintRow& row, std::span<const double
 }
 
 void gradient_blocks(const DotConstraintRow& row, const AffineVectorState& u,
-                     const AffineVectorState& w, bool velocity, std::span<Vec3> out_u,
+                     const AffineVectorState& w, RowGradient which, std::span<Vec3> out_u,
                      std::span<Vec3> out_w) {
-  const Vec3& wu = velocity ? w.velocity : w.value;
-  const Vec3& uw = velocity ? u.velocity : u.value;
+  // Φ = u·w: u-blocks pair with (a derivative of) w, w-blocks with (a derivative of) u. For
+  // Φ_q v + Φ_t = U·w + u·W + u̇·w + u·ẇ only u and w depend on q.
+  const bool time = which == RowGradient::velocity_and_time;
+  const Vec3 wu = which == RowGradient::phi ? w.value
+                  : time                    ? Vec3(w.velocity + w.time_rate)
+                                            : w.velocity;
+  const Vec3 uw = which == RowGradient::phi ? u.value
+                  : time                    ? Vec3(u.velocity + u.time_rate)
+                                            : u.velocity;
   for (int k = 0; k < row.u.term_count; ++k) out_u[k] = row.u.terms[k].coefficient * wu;
   for (int k = 0; k < row.w.term_count; ++k) out_w[k] = row.w.terms[k].coefficient * uw;
+}
+
+void gradient_blocks(const DotConstraintRow& row, const AffineVectorState& u,
+                     const AffineVectorState& w, bool velocity, std::span<Vec3> out_u,
+                     std::span<Vec3> out_w) {
+  gradient_blocks(row, u, w, velocity ? RowGradient::velocity : RowGradient::phi, out_u, out_w);
 }
 
 }  // namespace ancf

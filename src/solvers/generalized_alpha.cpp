@@ -1,1 +1,480 @@
-// placeholder: filled by the integrator work
+#include "ancf/solvers/generalized_alpha.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+#include <stdexcept>
+
+#include "ancf/core/error.hpp"
+
+namespace ancf {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Adds the time spent in a scope to a counter (also when the scope is left by an exception).
+class ScopedTimer {
+ public:
+  explicit ScopedTimer(double& seconds) : seconds_(seconds), start_(Clock::now()) {}
+  ~ScopedTimer() { seconds_ += std::chrono::duration<double>(Clock::now() - start_).count(); }
+  ScopedTimer(const ScopedTimer&) = delete;
+  ScopedTimer& operator=(const ScopedTimer&) = delete;
+
+ private:
+  double& seconds_;
+  Clock::time_point start_;
+};
+
+}  // namespace
+
+GeneralizedAlphaParameters GeneralizedAlphaParameters::chung_hulbert(double rho) {
+  if (!(rho >= 0.0 && rho <= 1.0))
+    throw std::invalid_argument(fmt::format("generalized-α: ρ∞ must lie in [0, 1], got {}", rho));
+  // Chung & Hulbert (1993), eqs. (25), (17), (20): second order, maximal high-frequency
+  // dissipation for the given ρ∞ (REFERENCES §8).
+  GeneralizedAlphaParameters p;
+  p.rho_infinity = rho;
+  p.alpha_m = (2.0 * rho - 1.0) / (rho + 1.0);
+  p.alpha_f = rho / (rho + 1.0);
+  p.gamma = 0.5 - p.alpha_m + p.alpha_f;
+  p.beta = 0.25 * (1.0 - p.alpha_m + p.alpha_f) * (1.0 - p.alpha_m + p.alpha_f);
+  return p;
+}
+
+GeneralizedAlphaStepper::GeneralizedAlphaStepper(SecondOrderProblem& problem,
+                                                 GeneralizedAlphaOptions options)
+    : problem_(problem),
+      options_(options),
+      params_(GeneralizedAlphaParameters::chung_hulbert(options.rho_infinity)),
+      n_(problem.coordinate_count()),
+      m_(problem.multiplier_count()),
+      klu_(problem.iteration_pattern()),
+      projector_(problem.iteration_pattern()) {
+  if (!(options_.step_size > 0.0))
+    throw std::invalid_argument("generalized-α: the step size must be positive");
+  if (options_.formulation == GeneralizedAlphaFormulation::index3 && options_.rho_infinity == 1.0)
+    throw std::invalid_argument(
+        "generalized-α: index 3 with ρ∞ = 1 is unstable (the multiplier recursion has a double "
+        "root at −1, Arnold & Brüls 2007); use ρ∞ < 1 or the stabilized index-2 formulation");
+  if (options_.max_iterations < 1 || options_.rtol < 0.0 || options_.atol_position <= 0.0 ||
+      options_.atol_velocity <= 0.0 || options_.atol_multiplier <= 0.0)
+    throw std::invalid_argument("generalized-α: tolerances must be positive, max_iterations ≥ 1");
+  const Index size = problem.system_size();
+  for (VecX* v : {&q_, &v_, &acc_, &a_, &q1_, &v1_, &acc1_, &acc_previous_, &increment_})
+    v->setZero(n_);
+  for (VecX* v : {&lambda_, &lambda1_, &lambda_previous_, &velocity_residual_, &phi_}) v->setZero(m_);
+  weight_q_.setZero(n_);
+  weight_v_.setZero(n_);
+  residual_.setZero(size);
+  rhs_.setZero(size);
+  values_.setZero(problem.iteration_pattern().nonzeros());
+  projector_values_.setZero(problem.iteration_pattern().nonzeros());
+}
+
+MatrixWeights GeneralizedAlphaStepper::iteration_weights(double h, bool scaled) const {
+  const GeneralizedAlphaParameters& p = params_;
+  const double gamma_prime = p.gamma / (p.beta * h);
+  const double beta_prime = (1.0 - p.alpha_m) / (p.beta * h * h * (1.0 - p.alpha_f));
+  // Bottasso et al. (2008): multiplying the dynamic rows by βh² makes the block
+  // (1 − α_m)/(1 − α_f) M + γh C + βh² K, O(1) as h → 0 next to the unweighted Φ_q blocks.
+  const double s = scaled ? p.beta * h * h : 1.0;
+  return {s, s * gamma_prime, s * beta_prime};
+}
+
+// --- start ---------------------------------------------------------------------------------------
+
+void GeneralizedAlphaStepper::refresh_projector(double t, const VecX& q) {
+  // [M Φ_qᵀ; Φ_q 0] (weights (0, 0, 1): no stiffness, damping or geometric term). v, a and λ do
+  // not enter; acc1_ is only a correctly sized argument.
+  problem_.iteration_matrix(t, as_span(q), as_span(v_), as_span(acc1_), as_span(lambda_),
+                            MatrixWeights{0.0, 0.0, 1.0}, as_span(projector_values_));
+  ++stats_.matrix_evaluations;
+  projector_.factor(as_span(projector_values_));
+}
+
+void GeneralizedAlphaStepper::project_positions(double t, VecX& q, int max_iterations) {
+  // Newton for min ½‖q⁺ − q‖²_M subject to Φ(q⁺) = 0: [M Φ_qᵀ; Φ_q 0][Δq; μ] = [0; −Φ].
+  for (int it = 0; it < max_iterations; ++it) {
+    problem_.constraints(t, as_span(q), as_span(phi_));
+    if (m_ == 0 || phi_.lpNorm<Eigen::Infinity>() == 0.0) return;
+    refresh_projector(t, q);
+    rhs_.head(n_).setZero();
+    rhs_.tail(m_) = -phi_;
+    projector_.solve(as_span(rhs_));
+    q += rhs_.head(n_);
+    if (rhs_.head(n_).lpNorm<Eigen::Infinity>() <=
+        1e-14 * std::max(1.0, q.lpNorm<Eigen::Infinity>()))
+      return;
+  }
+  problem_.constraints(t, as_span(q), as_span(phi_));
+  Index worst = 0;
+  const double value = phi_.cwiseAbs().maxCoeff(&worst);
+  throw SolverError(fmt::format(
+      "generalized-α: projecting the initial coordinates onto Φ = 0 did not converge in {} "
+      "iterations; |Φ| = {:.3e} at {}",
+      max_iterations, value, problem_.describe_row(n_ + worst)));
+}
+
+void GeneralizedAlphaStepper::project_velocities(double t, const VecX& q, VecX& v) {
+  // M-orthogonal projection onto Φ_q v + Φ_t = 0 (linear: one solve, projector factored at q).
+  if (m_ == 0) return;
+  problem_.velocity_constraint(t, as_span(q), as_span(v), as_span(velocity_residual_));
+  rhs_.head(n_).setZero();
+  rhs_.tail(m_) = -velocity_residual_;
+  projector_.solve(as_span(rhs_));
+  v += rhs_.head(n_);
+}
+
+void GeneralizedAlphaStepper::solve_index1(double t, const VecX& q, const VecX& v, VecX& acc,
+                                           VecX& lambda) {
+  // [M Φ_qᵀ; Φ_q 0][q''; λ] = [Q − F; γ] with the projector factored at q (DESIGN §6).
+  acc1_.setZero();
+  lambda1_.setZero();
+  problem_.residual(t, as_span(q), as_span(v), as_span(acc1_), as_span(lambda1_),
+                    as_span(residual_));
+  ++stats_.residual_evaluations;
+  rhs_.head(n_) = -residual_.head(n_);
+  if (m_ > 0) {
+    problem_.acceleration_rhs(t, as_span(q), as_span(v), as_span(velocity_residual_));
+    rhs_.tail(m_) = velocity_residual_;
+  }
+  projector_.solve(as_span(rhs_));
+  acc = rhs_.head(n_);
+  lambda = rhs_.tail(m_);
+}
+
+void GeneralizedAlphaStepper::initialize(double t0) {
+  initialize(t0, problem_.initial_coordinates(), problem_.initial_velocities());
+}
+
+void GeneralizedAlphaStepper::initialize(double t0, const VecX& q0, const VecX& v0) {
+  if (q0.size() != n_ || v0.size() != n_)
+    throw std::invalid_argument("generalized-α: initial q, v have the wrong size");
+  stats_ = {};
+  klu_base_[0] = klu_.full_factorizations();
+  klu_base_[1] = klu_.refactorizations();
+  klu_base_[2] = projector_.full_factorizations();
+  klu_base_[3] = projector_.refactorizations();
+  ScopedTimer timer(stats_.wall_seconds);
+  t_ = t0;
+  q_ = q0;
+  v_ = v0;
+  project_positions(t0, q_, 20);
+  h_ = options_.step_size;
+  restart(t0, h_);
+  matrix_h_ = -1.0;
+  matrix_stale_ = true;
+  matrix_age_ = 0;
+  eta_ = 1.0;
+  steps_since_halving_ = 0;
+  halvings_in_a_row_ = 0;
+  stats_.min_step = h_;
+  initialized_ = true;
+  stats_.full_factorizations = klu_.full_factorizations() - klu_base_[0] +
+                               projector_.full_factorizations() - klu_base_[2];
+  stats_.factorizations = stats_.full_factorizations + klu_.refactorizations() - klu_base_[1] +
+                          projector_.refactorizations() - klu_base_[3];
+}
+
+void GeneralizedAlphaStepper::restart(double t, double h) {
+  // Consistent starting values at (t, q_) for step size h (q_ satisfies Φ = 0).
+  refresh_projector(t, q_);
+  project_velocities(t, q_, v_);
+  solve_index1(t, q_, v_, acc_, lambda_);
+  a_h_ = h;
+  have_previous_ = false;
+  if (options_.start == GeneralizedAlphaStart::perturbed && params_.alpha_m != params_.alpha_f)
+    perturbed_start(t, h);
+  else
+    a_ = acc_;
+  matrix_stale_ = true;
+  ++stats_.restarts;
+}
+
+void GeneralizedAlphaStepper::perturbed_start(double t0, double h) {
+  // Starting values that agree with the asymptotic expansion of the numerical solution, so the
+  // O(h) start-up transient of λ (and q'') does not arise (Arnold, Brüls & Cardona 2015).
+  //
+  // (i) a_n approximates q''(t_n + Δh), Δ = α_m − α_f, to O(h²) (AB 7 is then consistent to
+  // second order). We evaluate q'' at t_0 + Δh by the index-1 solve at the Taylor state
+  // q_0 + s v_0 + ½s² q''_0, v_0 + s q''_0 (s = Δh), whose errors O(s³), O(s²) change q'' by O(h²).
+  // q1_, v1_ and phi_ hold the Taylor state and the (unused) multipliers there: no allocation.
+  const GeneralizedAlphaParameters& p = params_;
+  const double delta = p.alpha_m - p.alpha_f, s = delta * h;
+  q1_ = q_ + s * v_ + 0.5 * s * s * acc_;
+  v1_ = v_ + s * acc_;
+  refresh_projector(t0 + s, q1_);
+  solve_index1(t0 + s, q1_, v1_, a_, phi_);
+  // (ii) Index 3: the constraint-normal part of v_0 as the expansion has it (see
+  // shift_normal_velocity), c h² q'''_0 with q'''_0 = (a_0 − q''_0)/(Δh) + O(h).
+  shift_normal_velocity(t0, (1.0 / 6.0 - 0.5 * delta - p.beta) * h * h / s);
+}
+
+void GeneralizedAlphaStepper::shift_normal_velocity(double t, double factor) {
+  // Index 3: Φ(q_{n+1}) = 0 fixes the constraint-normal part of the position update,
+  // h v_n + h²(½ − β) a_n + h²β a_{n+1} = q(t_{n+1}) − q(t_n) to O(h⁴). With a_n = q''(t_n + Δh)
+  // the Taylor expansion leaves h³q'''(Δ/2 + β − 1/6), so the normal part of v_n follows
+  // v(t_n) + c h² q''' with c = 1/6 − Δ/2 − β. A v_n that differs from this by O(h²) (an exact
+  // v_0, or the v_n of another step size) is turned into an O(h) transient of λ by the h⁻² of
+  // the multipliers; it decays like n ρ∞ⁿ (the (v, a) recursion has the double root −ρ∞).
+  // Here v += x, the M-orthogonal correction x = M⁻¹Φ_qᵀy with Φ_q x = Φ_q δ, δ = factor·(a − q'')
+  // (a − q'' = Δh q''' + O(h²)); the tangential part of δ would only change the error constant.
+  if (options_.formulation != GeneralizedAlphaFormulation::index3 || m_ == 0 || factor == 0.0)
+    return;
+  v1_ = factor * (a_ - acc_);  // δ (v1_, q1_ are free outside a step)
+  q1_.setZero();
+  refresh_projector(t, q_);
+  problem_.velocity_constraint(t, as_span(q_), as_span(v1_), as_span(phi_));  // Φ_q δ + Φ_t
+  problem_.velocity_constraint(t, as_span(q_), as_span(q1_), as_span(velocity_residual_));  // Φ_t
+  rhs_.head(n_).setZero();
+  rhs_.tail(m_) = phi_ - velocity_residual_;
+  projector_.solve(as_span(rhs_));
+  v_ += rhs_.head(n_);
+}
+
+// --- one step ------------------------------------------------------------------------------------
+
+void GeneralizedAlphaStepper::predict(double h) {
+  // Newton's starting point; the converged step does not depend on it (up to the tolerance).
+  // constant: q''_{n+1} = q''_n, λ_{n+1} = λ_n, exact when q'' is constant. extrapolated: linear
+  // extrapolation from the last two accepted steps (the constant one right after a restart), one
+  // order more accurate for the smooth part of the motion; q, v follow from the update formulas.
+  const GeneralizedAlphaParameters& p = params_;
+  acc1_ = acc_;
+  lambda1_ = lambda_;
+  if (options_.predictor == GeneralizedAlphaPredictor::extrapolated && have_previous_) {
+    const double r = h / previous_h_;
+    acc1_ += r * (acc_ - acc_previous_);
+    lambda1_ += r * (lambda_ - lambda_previous_);
+  }
+  // a_{n+1} from (AB 7), kept in increment_ as scratch.
+  increment_ = (p.alpha_f * acc_ - p.alpha_m * a_ + (1.0 - p.alpha_f) * acc1_) / (1.0 - p.alpha_m);
+  v1_ = v_ + h * (1.0 - p.gamma) * a_ + h * p.gamma * increment_;
+  q1_ = q_ + h * v_ + h * h * (0.5 - p.beta) * a_ + h * h * p.beta * increment_;
+}
+
+void GeneralizedAlphaStepper::refresh_matrix(double t1, double h) {
+  problem_.iteration_matrix(t1, as_span(q1_), as_span(v1_), as_span(acc1_), as_span(lambda1_),
+                            iteration_weights(h, options_.scaling), as_span(values_));
+  ++stats_.matrix_evaluations;
+  klu_.factor(as_span(values_));
+  matrix_h_ = h;
+  matrix_age_ = 0;
+  matrix_stale_ = false;
+  // The stabilized index-2 position correction uses the projector at a recent iterate: the
+  // direction M⁻¹Φ_qᵀ only has to be a smooth full-rank field (μ itself is small).
+  if (options_.formulation == GeneralizedAlphaFormulation::stabilized_index2 && m_ > 0)
+    refresh_projector(t1, q1_);
+}
+
+void GeneralizedAlphaStepper::update_weights(double gamma_prime) {
+  // Inverse error weights, fixed for the step attempt (as CVODE/IDA fix theirs per step): from
+  // the larger of the last accepted and the predicted values. Δv = γ'Δq is folded into the v
+  // weights. Multipliers get one norm-wise weight: individual ones pass through zero (and have
+  // unrelated units), so a per-component relative test would demand absolute accuracy atol_λ there.
+  const double rtol = options_.rtol;
+  weight_q_ = (options_.atol_position + rtol * q_.cwiseAbs().cwiseMax(q1_.cwiseAbs()).array()).inverse();
+  weight_v_ = gamma_prime /
+              (options_.atol_velocity + rtol * v_.cwiseAbs().cwiseMax(v1_.cwiseAbs()).array());
+  weight_lambda_ =
+      1.0 / (options_.atol_multiplier +
+             rtol * std::max(lambda_.lpNorm<Eigen::Infinity>(), lambda1_.lpNorm<Eigen::Infinity>()));
+}
+
+double GeneralizedAlphaStepper::increment_norm(Index* worst) const {
+  // Largest of the weighted RMS norms of Δq (increment_), Δv = γ'δ (δ = rhs_ head, γ' folded into
+  // weight_v_) and Δλ (rhs_ tail).
+  const double n = static_cast<double>(std::max<Index>(n_, 1));
+  const double nq = std::sqrt((increment_.array() * weight_q_).square().sum() / n);
+  const double nv = std::sqrt((rhs_.head(n_).array() * weight_v_).square().sum() / n);
+  const double nl = m_ == 0 ? 0.0
+                            : rhs_.tail(m_).norm() * weight_lambda_ /
+                                  std::sqrt(static_cast<double>(m_));
+  if (worst) {
+    // Only for error messages: the component with the largest weighted increment.
+    Index iq = 0, iv = 0, il = 0;
+    const double wq = (increment_.array() * weight_q_).abs().maxCoeff(&iq);
+    const double wv = (rhs_.head(n_).array() * weight_v_).abs().maxCoeff(&iv);
+    const double wl = m_ == 0 ? 0.0 : rhs_.tail(m_).cwiseAbs().maxCoeff(&il) * weight_lambda_;
+    *worst = wl > std::max(wq, wv) ? n_ + il : (wq >= wv ? iq : iv);
+  }
+  return std::max({nq, nv, nl});
+}
+
+GeneralizedAlphaStepper::Outcome GeneralizedAlphaStepper::newton(double t1, double h) {
+  const GeneralizedAlphaParameters& p = params_;
+  const double gamma_prime = p.gamma / (p.beta * h);
+  const double beta_prime = (1.0 - p.alpha_m) / (p.beta * h * h * (1.0 - p.alpha_f));
+  const double s = options_.scaling ? p.beta * h * h : 1.0;
+  const bool index2 = options_.formulation == GeneralizedAlphaFormulation::stabilized_index2;
+  const bool full = options_.newton == NewtonStrategy::full;
+  update_weights(gamma_prime);
+  bool fresh = false;  // the matrix in use was built during this attempt
+  int k = 0;           // iterations (modified Newton: with the matrix in use)
+  double previous_norm = 0.0;
+  step_max_rate_ = 0.0;
+  // Before a rate has been measured in this attempt, the remaining error after the first
+  // iteration is bounded by ‖Δ_1‖ only if the contraction rate is ≤ ½; the rate of the previous
+  // step (modified Newton) may only tighten that test, never relax it: rates measured near a
+  // solution underestimate those further away, and accepting a large first increment on an old
+  // small rate lets index-3 position errors (amplified by h⁻² in λ and q'') build up.
+  double eta = full ? 1.0 : std::max(1.0, eta_);
+  for (int left = options_.max_iterations; left > 0; --left) {
+    problem_.residual(t1, as_span(q1_), as_span(v1_), as_span(acc1_), as_span(lambda1_),
+                      as_span(residual_));
+    ++stats_.residual_evaluations;
+    if (!residual_.allFinite()) return fresh ? Outcome::failed : Outcome::diverged_stale;
+    if (index2 && m_ > 0)
+      problem_.velocity_constraint(t1, as_span(q1_), as_span(v1_), as_span(velocity_residual_));
+    if (full || matrix_stale_ || matrix_h_ != h) {
+      try {
+        refresh_matrix(t1, h);
+      } catch (const SolverError&) {
+        return Outcome::failed;
+      }
+      fresh = true;
+      if (!full) k = 0;  // a new chord matrix: its rate is yet unknown
+    }
+    ++k;
+    // Scaled right-hand side: dynamic rows × s; constraint rows: Φ (index 3) or, index 2,
+    // (Φ_q v + Φ_t)/γ' (the velocity constraint linearized through Δv = γ'Δq).
+    rhs_.head(n_) = -s * residual_.head(n_);
+    if (m_ > 0) {
+      if (index2)
+        rhs_.tail(m_) = -velocity_residual_ / gamma_prime;
+      else
+        rhs_.tail(m_) = -residual_.tail(m_);
+    }
+    klu_.solve(as_span(rhs_));
+    ++stats_.newton_iterations;
+    rhs_.tail(m_) /= s;  // Δλ = Δλ̃ / (βh²)
+    q1_ += rhs_.head(n_);
+    v1_ += gamma_prime * rhs_.head(n_);
+    acc1_ += beta_prime * rhs_.head(n_);
+    lambda1_ += rhs_.tail(m_);
+    increment_ = rhs_.head(n_);
+    if (index2 && m_ > 0) {
+      // Position constraint through μ: q ← q + M⁻¹Φ_qᵀμ with Φ_q M⁻¹Φ_qᵀμ = −Φ (block
+      // Gauss–Seidel on the GGL system: the μ correction hardly changes the dynamic residual).
+      problem_.constraints(t1, as_span(q1_), as_span(phi_));
+      residual_.head(n_).setZero();  // residual_ reused as the projection right-hand side
+      residual_.tail(m_) = -phi_;
+      projector_.solve(as_span(residual_));
+      q1_ += residual_.head(n_);
+      increment_ += residual_.head(n_);
+    }
+    const double norm = increment_norm();
+    if (!std::isfinite(norm)) return fresh ? Outcome::failed : Outcome::diverged_stale;
+    if (norm == 0.0) return Outcome::converged;
+    if (k > 1) {
+      const double theta = norm / previous_norm;
+      step_max_rate_ = std::max(step_max_rate_, theta);
+      // Divergence, or predicted failure: the remaining iterations cannot reach the tolerance at
+      // this rate. A stale matrix is rebuilt at the current iterate (once per attempt, with a
+      // fresh iteration budget); a fresh one means the step is too long.
+      if (theta >= 0.99 || std::pow(theta, left - 1) * theta / (1.0 - theta) * norm > 1.0) {
+        if (fresh) return Outcome::failed;
+        matrix_stale_ = true;
+        left = options_.max_iterations + 1;
+        previous_norm = 0.0;
+        eta = std::max(1.0, eta);  // no rate known for the new matrix yet
+        continue;
+      }
+      eta = theta / (1.0 - theta);
+      eta_ = eta;
+    }
+    // Converged when the estimated remaining error η‖Δ_k‖ (Hairer & Wanner §IV.8) is ≤ 1; full
+    // Newton converges quadratically, so ‖Δ_k‖ ≤ 1 leaves an error far below the tolerance.
+    if (eta * norm <= 1.0 || (full && norm <= 1.0)) return Outcome::converged;
+    previous_norm = norm;
+  }
+  return fresh ? Outcome::failed : Outcome::diverged_stale;
+}
+
+void GeneralizedAlphaStepper::change_step_size(double h_new) {
+  // The state carries h-dependent parts of the expansion of the numerical solution (a − q'' =
+  // Δh q''' + O(h²) and, index 3, the normal part c h² q''' of v). Adapting them to a new h is not
+  // enough: the index-3 (v, a) recursion amplifies O(h²) velocity errors by h⁻² in the
+  // multipliers, and a run of successive halvings (as after Newton failures) makes that grow
+  // without bound. So a change of step size restarts the scheme from (t, q, v) with the starting
+  // procedure of initialize(): v projected onto Φ_q v + Φ_t = 0, q'' and λ from the index-1
+  // system, a (and the normal part of v) from options.start for the new h.
+  if (h_new == a_h_) return;
+  restart(t_, h_new);
+}
+
+void GeneralizedAlphaStepper::step(double t_limit) {
+  if (!initialized_) throw std::logic_error("GeneralizedAlphaStepper::step before initialize()");
+  ScopedTimer timer(stats_.wall_seconds);
+  const GeneralizedAlphaParameters& p = params_;
+  const double remaining = t_limit - t_;
+  if (!(remaining > 0.0)) return;
+  bool retried_stale = false;
+  for (;;) {
+    // Snap to t_limit when it is within round-off of one step, so output times are hit exactly
+    // (keeping h_ itself then, so the factorization stays valid).
+    const bool last = remaining <= h_ * (1.0 + 1e-8);
+    const double h = std::abs(remaining - h_) <= 1e-8 * h_ ? h_ : std::min(h_, remaining);
+    change_step_size(h);
+    const double t1 = last ? t_limit : t_ + h;
+    predict(h);
+    const Outcome outcome = newton(t1, h);
+    if (outcome == Outcome::converged) {
+      a_ = (p.alpha_f * acc_ - p.alpha_m * a_ + (1.0 - p.alpha_f) * acc1_) / (1.0 - p.alpha_m);
+      q_.swap(q1_);
+      v_.swap(v1_);
+      acc_previous_.swap(acc_);
+      acc_.swap(acc1_);
+      lambda_previous_.swap(lambda_);
+      lambda_.swap(lambda1_);
+      have_previous_ = true;
+      previous_h_ = h;
+      t_ = t1;
+      ++stats_.steps;
+      stats_.min_step = std::min(stats_.min_step, h);
+      ++matrix_age_;
+      halvings_in_a_row_ = 0;
+      // Modified Newton keeps the factorization while it contracts well ("while the contraction
+      // rate is good"); a slow step means the matrix has drifted from the current state.
+      if (options_.newton == NewtonStrategy::modified &&
+          (step_max_rate_ > options_.max_reuse_rate || matrix_age_ >= options_.max_matrix_age))
+        matrix_stale_ = true;
+      if (h_ < options_.step_size && ++steps_since_halving_ >= options_.recovery_steps) {
+        h_ = std::min(2.0 * h_, options_.step_size);
+        steps_since_halving_ = 0;
+      }
+      break;
+    }
+    ++stats_.convergence_failures;
+    matrix_stale_ = true;
+    if (outcome == Outcome::diverged_stale && !retried_stale) {
+      retried_stale = true;  // same h with a fresh matrix before halving
+      continue;
+    }
+    if (++halvings_in_a_row_ > options_.max_step_halvings) {
+      Index worst = -1;
+      const double norm = increment_norm(&worst);
+      const std::string where = worst < 0 ? std::string("-") : problem_.describe_row(worst);
+      throw SolverError(fmt::format(
+          "generalized-α: Newton failed at t = {:.9g} with h = {:.3e} after {} step halvings; "
+          "last weighted increment norm {:.3e}, largest at {}",
+          t_, h, options_.max_step_halvings, norm, where));
+    }
+    h_ = 0.5 * h;
+    steps_since_halving_ = 0;
+    retried_stale = false;
+    ++stats_.step_halvings;
+    klu_.reset_pivoting();
+  }
+  stats_.full_factorizations = klu_.full_factorizations() - klu_base_[0] +
+                               projector_.full_factorizations() - klu_base_[2];
+  stats_.factorizations = stats_.full_factorizations + klu_.refactorizations() - klu_base_[1] +
+                          projector_.refactorizations() - klu_base_[3];
+}
+
+void GeneralizedAlphaStepper::advance_to(double t_end) {
+  while (t_ < t_end) step(t_end);
+}
+
+}  // namespace ancf

@@ -30,12 +30,30 @@ inline void add_mass_times(const Mat4& m4, Index base, const VecX& x, Eigen::Map
     for (int s = 0; s < 4; ++s) r.segment<3>(base + 3 * p) += m4(p, s) * x.segment<3>(base + 3 * s);
 }
 
-// values[slots] += w_a (m4 ⊗ I₃): only the diagonal of each 3×3 block is non-zero.
-inline void add_mass_matrix(const Mat4& m4, const std::array<Index, 144>& slots, double w_a,
-                            std::span<double> values) {
+// Where the iteration-matrix entries land. Entry s of model.pattern() has a position part
+// (∂/∂q terms and the constraint blocks) and a velocity part (∂/∂v, ∂/∂a terms). In the model's
+// own matrix both are the same entry; in a larger matrix (the GGL Jacobian of ggl_problem.cpp)
+// they are separate blocks. One template serves both, so the loops over elements, bodies, force
+// elements and constraint rows exist once.
+struct OwnPattern {
+  std::span<double> values;
+  double& position(Index s) const { return values[s]; }
+  double& velocity(Index s) const { return values[s]; }
+};
+struct Scattered {
+  std::span<double> values;
+  const MatrixScatter& map;
+  double& position(Index s) const { return values[map.position[s]]; }
+  double& velocity(Index s) const { return values[map.velocity[s]]; }
+};
+
+// velocity part += w_a (m4 ⊗ I₃): only the diagonal of each 3×3 block is non-zero.
+template <class Target>
+void add_mass_matrix(const Mat4& m4, const std::array<Index, 144>& slots, double w_a,
+                     const Target& t) {
   for (int s = 0; s < 4; ++s)
     for (int p = 0; p < 4; ++p)
-      for (int d = 0; d < 3; ++d) values[slots[12 * (3 * s + d) + 3 * p + d]] += w_a * m4(p, s);
+      for (int d = 0; d < 3; ++d) t.velocity(slots[12 * (3 * s + d) + 3 * p + d]) += w_a * m4(p, s);
 }
 
 // Scatter −scale·Q of a force element into the dynamic residual rows.
@@ -44,13 +62,88 @@ inline void subtract_force(const BlockList& blocks, const ForceResult& f, double
   for (int b = 0; b < blocks.count; ++b) r.segment<3>(blocks.blocks[b]) -= scale * f.force.segment<3>(3 * b);
 }
 
-// values += −(w_q ∂Q/∂q + w_v ∂Q/∂v) through the element's column-major slots.
-inline void subtract_force_jacobian(const std::vector<Index>& slots, const ForceResult& f,
-                                    double w_q, double w_v, std::span<double> values) {
+// position part −= w_q ∂Q/∂q, velocity part −= w_v ∂Q/∂v, through the element's column-major slots.
+template <class Target>
+void subtract_force_jacobian(const std::vector<Index>& slots, const ForceResult& f, double w_q,
+                             double w_v, const Target& t) {
   const Eigen::Index n = f.d_force_dq.rows();
   for (Eigen::Index c = 0; c < n; ++c)
-    for (Eigen::Index r = 0; r < n; ++r)
-      values[slots[c * n + r]] -= w_q * f.d_force_dq(r, c) + w_v * f.d_force_dv(r, c);
+    for (Eigen::Index r = 0; r < n; ++r) {
+      const Index s = slots[c * n + r];
+      if (w_q != 0.0) t.position(s) -= w_q * f.d_force_dq(r, c);
+      if (w_v != 0.0) t.velocity(s) -= w_v * f.d_force_dv(r, c);
+    }
+}
+
+// The iteration matrix w_q K + w_v D + w_a M with the constraint blocks, added into `t`.
+// Each cable element kernel runs once, returning K and D together.
+template <class Target>
+void add_iteration_matrix_to(const Model& model, const SystemState& state,
+                             const IterationWeights& w, Workspace& ws, const Target& t) {
+  const CableEvalRequest request{.stiffness = w.w_q != 0.0, .damping_matrix = w.w_v != 0.0};
+  const auto frames = ws.frames_at(model, state.t);
+  const auto q = as_span(state.q), v = as_span(state.v);
+
+  for_each_element(
+      model, state.q, state.v,
+      [&](Index ci, Index j, const CableData& c, Index, const Vec12& e, const Vec12& e_dot) {
+        const auto& slots = model.element_slots(ci, j);
+        const bool damping = request.damping_matrix && c.section.has_damping();
+        if (request.stiffness || damping) {
+          evaluate_cable_element(c.section, c.elements[j], e, e_dot, request, ws.element);
+          if (request.stiffness)
+            for (int k = 0; k < 144; ++k)
+              t.position(slots[k]) += w.w_q * ws.element.stiffness.data()[k];
+          if (damping)
+            for (int k = 0; k < 144; ++k)
+              t.velocity(slots[k]) += w.w_v * ws.element.damping.data()[k];
+        }
+        if (w.w_a != 0.0) add_mass_matrix(c.mass[j], slots, w.w_a, t);
+      });
+  if (w.w_a != 0.0)
+    for (Index b = 0; b < static_cast<Index>(model.bodies().size()); ++b)
+      add_mass_matrix(model.bodies()[b].mass, model.body_slots(b), w.w_a, t);
+
+  if (w.w_q != 0.0)
+    for (const auto& f : model.body_torques()) {
+      evaluate(f.element, q, state.t, ws.force);
+      subtract_force_jacobian(f.slots, ws.force, w.w_q * w.load_factor, 0.0, t);
+    }
+  for (const auto& f : model.spring_dampers()) {
+    evaluate(f.element, q, v, frames, ws.force);
+    subtract_force_jacobian(f.slots, ws.force, w.w_q, w.w_v, t);
+  }
+  for (const auto& f : model.drives()) {
+    evaluate(f.element, q, v, state.t, ws.force);
+    subtract_force_jacobian(f.slots, ws.force, w.w_q, w.w_v, t);
+  }
+
+  // Constraint blocks Φ_q, Φ_qᵀ and the geometric stiffness w_q ∂(Φ_qᵀλ)/∂q = w_q λ α_k β_m I₃.
+  BlockVec gu, gw;
+  for (Index i = 0; i < model.multiplier_count(); ++i) {
+    const DotConstraintRow& row = model.rows()[i];
+    const AffineVectorState u = evaluate(row.u, q, {}, frames);
+    const AffineVectorState wv = evaluate(row.w, q, {}, frames);
+    gradient_blocks(row, u, wv, RowGradient::phi, gu, gw);
+    const auto slots = model.row_slots(i);
+    std::size_t s = 0;
+    for (int k = 0; k < row.u.term_count; ++k) {
+      for (int d = 0; d < 3; ++d) t.position(slots[s++]) += gu[k][d];
+      for (int d = 0; d < 3; ++d) t.position(slots[s++]) += gu[k][d];
+    }
+    for (int k = 0; k < row.w.term_count; ++k) {
+      for (int d = 0; d < 3; ++d) t.position(slots[s++]) += gw[k][d];
+      for (int d = 0; d < 3; ++d) t.position(slots[s++]) += gw[k][d];
+    }
+    const double g = w.w_q * state.lambda[i];
+    if (g == 0.0) continue;
+    // add_geometric_stiffness visits the (u-term, w-term) pairs in the order the slots were made.
+    const auto geo = model.geometric_slots(i);
+    std::size_t k = 0;
+    add_geometric_stiffness(row, g, [&](Index, Index, double c) {
+      for (int d = 0; d < 3; ++d) t.position(geo[k++]) += c;
+    });
+  }
 }
 
 }  // namespace
@@ -127,68 +220,12 @@ void assemble_residual(const Model& model, const SystemState& state, double load
 void assemble_iteration_matrix(const Model& model, const SystemState& state,
                                const IterationWeights& w, Workspace& ws, std::span<double> values) {
   std::fill(values.begin(), values.end(), 0.0);
-  const CableEvalRequest request{.stiffness = w.w_q != 0.0, .damping_matrix = w.w_v != 0.0};
-  const auto frames = ws.frames_at(model, state.t);
-  const auto q = as_span(state.q), v = as_span(state.v);
+  add_iteration_matrix_to(model, state, w, ws, OwnPattern{values});
+}
 
-  for_each_element(model, state.q, state.v,
-                   [&](Index ci, Index j, const CableData& c, Index, const Vec12& e, const Vec12& e_dot) {
-                     const auto& slots = model.element_slots(ci, j);
-                     const bool damping = request.damping_matrix && c.section.has_damping();
-                     if (request.stiffness || damping) {
-                       evaluate_cable_element(c.section, c.elements[j], e, e_dot, request, ws.element);
-                       for (int k = 0; k < 144; ++k) {
-                         double value = w.w_q * ws.element.stiffness.data()[k];
-                         if (damping) value += w.w_v * ws.element.damping.data()[k];
-                         values[slots[k]] += value;
-                       }
-                     }
-                     if (w.w_a != 0.0) add_mass_matrix(c.mass[j], slots, w.w_a, values);
-                   });
-  if (w.w_a != 0.0)
-    for (Index b = 0; b < static_cast<Index>(model.bodies().size()); ++b)
-      add_mass_matrix(model.bodies()[b].mass, model.body_slots(b), w.w_a, values);
-
-  if (w.w_q != 0.0)
-    for (const auto& f : model.body_torques()) {
-      evaluate(f.element, q, state.t, ws.force);
-      subtract_force_jacobian(f.slots, ws.force, w.w_q * w.load_factor, 0.0, values);
-    }
-  for (const auto& f : model.spring_dampers()) {
-    evaluate(f.element, q, v, frames, ws.force);
-    subtract_force_jacobian(f.slots, ws.force, w.w_q, w.w_v, values);
-  }
-  for (const auto& f : model.drives()) {
-    evaluate(f.element, q, v, state.t, ws.force);
-    subtract_force_jacobian(f.slots, ws.force, w.w_q, w.w_v, values);
-  }
-
-  // Constraint blocks Φ_q, Φ_qᵀ and the geometric stiffness w_q ∂(Φ_qᵀλ)/∂q = w_q λ α_k β_m I₃.
-  BlockVec gu, gw;
-  for (Index i = 0; i < model.multiplier_count(); ++i) {
-    const DotConstraintRow& row = model.rows()[i];
-    const AffineVectorState u = evaluate(row.u, q, {}, frames);
-    const AffineVectorState wv = evaluate(row.w, q, {}, frames);
-    gradient_blocks(row, u, wv, false, gu, gw);
-    const auto slots = model.row_slots(i);
-    std::size_t s = 0;
-    for (int k = 0; k < row.u.term_count; ++k) {
-      for (int d = 0; d < 3; ++d) values[slots[s++]] += gu[k][d];
-      for (int d = 0; d < 3; ++d) values[slots[s++]] += gu[k][d];
-    }
-    for (int k = 0; k < row.w.term_count; ++k) {
-      for (int d = 0; d < 3; ++d) values[slots[s++]] += gw[k][d];
-      for (int d = 0; d < 3; ++d) values[slots[s++]] += gw[k][d];
-    }
-    const double g = w.w_q * state.lambda[i];
-    if (g == 0.0) continue;
-    // add_geometric_stiffness visits the (u-term, w-term) pairs in the order the slots were made.
-    const auto geo = model.geometric_slots(i);
-    std::size_t t = 0;
-    add_geometric_stiffness(row, g, [&](Index, Index, double c) {
-      for (int d = 0; d < 3; ++d) values[geo[t++]] += c;
-    });
-  }
+void add_iteration_matrix(const Model& model, const SystemState& state, const IterationWeights& w,
+                          const MatrixScatter& scatter, Workspace& ws, std::span<double> values) {
+  add_iteration_matrix_to(model, state, w, ws, Scattered{values, scatter});
 }
 
 void assemble_velocity_constraint(const Model& model, const SystemState& state, Workspace& ws,

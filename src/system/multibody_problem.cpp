@@ -1,1 +1,60 @@
-// placeholder: filled by the integrator work
+#include "ancf/system/multibody_problem.hpp"
+
+namespace ancf {
+
+MultibodyProblem::MultibodyProblem(const Model& model)
+    : model_(model), state_(SystemState::initial(model)), workspace_(model) {}
+
+void MultibodyProblem::load(double t, std::span<const double> q, std::span<const double> v,
+                            std::span<const double> a, std::span<const double> lambda) {
+  const Index n = model_.coordinate_count(), m = model_.multiplier_count();
+  state_.t = t;
+  state_.q = Eigen::Map<const VecX>(q.data(), n);
+  if (!v.empty()) state_.v = Eigen::Map<const VecX>(v.data(), n);
+  if (!a.empty()) state_.a = Eigen::Map<const VecX>(a.data(), n);
+  if (!lambda.empty()) state_.lambda = Eigen::Map<const VecX>(lambda.data(), m);
+}
+
+void MultibodyProblem::residual(double t, std::span<const double> q, std::span<const double> v,
+                                std::span<const double> a, std::span<const double> lambda,
+                                std::span<double> r) {
+  load(t, q, v, a, lambda);
+  assemble_residual(model_, state_, 1.0, workspace_, r);
+}
+
+void MultibodyProblem::iteration_matrix(double t, std::span<const double> q,
+                                        std::span<const double> v, std::span<const double> a,
+                                        std::span<const double> lambda, const MatrixWeights& w,
+                                        std::span<double> values) {
+  load(t, q, v, a, lambda);
+  assemble_iteration_matrix(model_, state_, IterationWeights{w.w_q, w.w_v, w.w_a, 1.0}, workspace_,
+                            values);
+}
+
+void MultibodyProblem::constraints(double t, std::span<const double> q, std::span<double> phi) {
+  // Φ alone, without the element loop of assemble_residual: each row is u·w + c (dot_constraint.hpp).
+  const auto frames = workspace_.frames_at(model_, t);
+  for (Index i = 0; i < model_.multiplier_count(); ++i) {
+    const DotConstraintRow& row = model_.rows()[i];
+    phi[i] = evaluate(row.u, q, {}, frames).value.dot(evaluate(row.w, q, {}, frames).value) + row.c;
+  }
+}
+
+void MultibodyProblem::velocity_constraint(double t, std::span<const double> q,
+                                           std::span<const double> v, std::span<double> out) {
+  load(t, q, v, {}, {});
+  assemble_velocity_constraint(model_, state_, workspace_, out);
+}
+
+void MultibodyProblem::acceleration_rhs(double t, std::span<const double> q,
+                                        std::span<const double> v, std::span<double> gamma) {
+  load(t, q, v, {}, {});
+  assemble_acceleration_rhs(model_, state_, workspace_, gamma);
+}
+
+double MultibodyProblem::energy(double t, std::span<const double> q, std::span<const double> v) {
+  load(t, q, v, {}, {});
+  return energies(model_, state_, workspace_).total();
+}
+
+}  // namespace ancf

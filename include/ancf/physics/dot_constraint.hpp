@@ -12,6 +12,7 @@
 //   Φ_q v    = U·w + u·W                 (U = Σ α_k v[b_k], the velocity part of u)
 //   (Φ_q v)_q: block of u gets α_k W, block of w gets α_k U
 //   Φ_qt v   = U·ẇ + u̇·W
+//   (Φ_t)_q  : block of u gets α_k ẇ, block of w gets α_k u̇   (u̇, ẇ do not depend on q)
 //   ∂(Φ_qᵀλ)/∂q = λ Σ_{k∈u, m∈w} α_k β_m (I₃ at (b_k, b_m) and (b_m, b_k))
 #pragma once
 
@@ -76,9 +77,21 @@ struct DotConstraintValues {
                                            std::span<const double> v,
                                            std::span<const FrameKinematics> frames);
 
+/// Which gradient gradient_blocks() returns.
+enum class RowGradient {
+  phi,                ///< Φ_q: u-blocks α_k w, w-blocks β_m u
+  velocity,           ///< (Φ_q v)_q: u-blocks α_k W, w-blocks β_m U
+  velocity_and_time,  ///< ∂(Φ_q v + Φ_t)/∂q: u-blocks α_k (W + ẇ), w-blocks β_m (U + u̇);
+                      ///< the Jacobian of the velocity-level constraint (GGL, index 2)
+};
+
 /// Gradient blocks of a row: for term j of u (j < u.term_count) the 3-vector at block u.terms[j],
-/// then the terms of w. `out_u` has u.term_count entries, `out_w` w.term_count.
-/// With `velocity = true` this gives (Φ_q v)_q instead of Φ_q (u, w replaced by U, W).
+/// then the terms of w. `out_u` has u.term_count entries, `out_w` w.term_count. Blocks may repeat
+/// (a_i·a_i, or one block in u and w): the caller accumulates.
+void gradient_blocks(const DotConstraintRow& row, const AffineVectorState& u,
+                     const AffineVectorState& w, RowGradient which, std::span<Vec3> out_u,
+                     std::span<Vec3> out_w);
+/// Same with `velocity = true` meaning RowGradient::velocity, false RowGradient::phi.
 void gradient_blocks(const DotConstraintRow& row, const AffineVectorState& u,
                      const AffineVectorState& w, bool velocity, std::span<Vec3> out_u,
                      std::span<Vec3> out_w);

@@ -56,6 +56,22 @@ void assemble_iteration_matrix(const Model& model, const SystemState& state,
                                const IterationWeights& weights, Workspace& ws,
                                std::span<double> values);
 
+/// Destination of the iteration-matrix entries inside a larger matrix whose ∂/∂q and ∂/∂v blocks
+/// are separate (the GGL Jacobian, ggl_problem.hpp). Entry s of model.pattern() adds its position
+/// part (w_q K with the geometric stiffness, and the unweighted Φ_q, Φ_qᵀ) to values[position[s]]
+/// and its velocity part (w_v D + w_a M) to values[velocity[s]]. Both spans have
+/// pattern().nonzeros() entries; velocity[s] is read only for entries of the n×n dynamic block.
+struct MatrixScatter {
+  std::span<const Index> position;
+  std::span<const Index> velocity;
+};
+
+/// Adds (does not zero) the terms of assemble_iteration_matrix into `values` through `scatter`;
+/// the same code path, so both matrices agree term by term. Each cable element kernel runs once.
+void add_iteration_matrix(const Model& model, const SystemState& state,
+                          const IterationWeights& weights, const MatrixScatter& scatter,
+                          Workspace& ws, std::span<double> values);
+
 /// Φ_q v + Φ_t (size m): the velocity-level constraint.
 void assemble_velocity_constraint(const Model& model, const SystemState& state, Workspace& ws,
                                   std::span<double> out);
