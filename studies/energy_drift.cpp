@@ -22,14 +22,15 @@
 // slope of the relative error against t, 1/s), max |Φ|, max |Φ_q v + Φ_t|, max relative
 // angular-momentum error (spinning only; nan / 0 elsewhere), steps, wall time.
 //
-// Usage: ancf-study-energy-drift [output directory = out/energy_drift] [duration = 20]
+// Usage: ancf-study-energy-drift [output directory = out/energy_drift] [duration = 20] [--no-ida]
+// (--no-ida skips the IDA runs, which take almost all of the ≈ 20 min).
+#include <fmt/format.h>
+#include <fmt/os.h>
 #include <Eigen/Geometry>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fmt/format.h>
-#include <fmt/os.h>
 #include <functional>
 #include <numbers>
 #include <string>
@@ -51,14 +52,15 @@ constexpr double kSampleInterval = 0.01;  // [s]
 struct Scene {
   std::string name;
   Model model;
-  double energy_scale = 1.0;         // [J]
-  bool conserves_momentum = false;   // angular momentum about the origin (pivot) is conserved
+  double energy_scale = 1.0;        // [J]
+  bool conserves_momentum = false;  // angular momentum about the origin (pivot) is conserved
 };
 
 Scene pendulum_scene() {
   const CablePendulumSpec spec = benchmark_cable_pendulum(10);
   Scene s{"pendulum", cable_pendulum_model(spec), 0.0};
-  s.energy_scale = spec.mass_per_length * spec.length * std::abs(spec.gravity.z()) * 0.5 * spec.length;
+  s.energy_scale =
+      spec.mass_per_length * spec.length * std::abs(spec.gravity.z()) * 0.5 * spec.length;
   return s;
 }
 
@@ -103,7 +105,8 @@ struct Trace {
 // Measures a state of `model` (energy, constraint drift, angular momentum about the origin).
 class Meter {
  public:
-  explicit Meter(const Model& model) : model_(model), ws_(model), state_(SystemState::initial(model)) {}
+  explicit Meter(const Model& model)
+      : model_(model), ws_(model), state_(SystemState::initial(model)) {}
   Sample measure(double t, const VecX& q, const VecX& v) {
     state_.t = t;
     state_.q = q;
@@ -119,12 +122,14 @@ class Meter {
   SystemState state_;
 };
 
-Trace run_generalized_alpha(const Scene& scene, double duration, double h, double rho, bool index2) {
+Trace run_generalized_alpha(const Scene& scene, double duration, double h, double rho,
+                            bool index2) {
   MultibodyProblem problem(scene.model);
   GeneralizedAlphaOptions o;
   o.step_size = h;
   o.rho_infinity = rho;
-  o.formulation = index2 ? GeneralizedAlphaFormulation::stabilized_index2 : GeneralizedAlphaFormulation::index3;
+  o.formulation =
+      index2 ? GeneralizedAlphaFormulation::stabilized_index2 : GeneralizedAlphaFormulation::index3;
   o.start = GeneralizedAlphaStart::perturbed;
   o.rtol = 1e-8;
   o.atol_position = 1e-10;
@@ -132,7 +137,10 @@ Trace run_generalized_alpha(const Scene& scene, double duration, double h, doubl
   o.atol_multiplier = 1e-8;
   GeneralizedAlphaStepper stepper(problem, o);
   Meter meter(scene.model);
-  Trace trace{fmt::format("genalpha_{}_rho{:.1f}_h{:.0e}", index2 ? "index2" : "index3", rho, h), {}, 0, 0.0};
+  Trace trace{fmt::format("genalpha_{}_rho{:.1f}_h{:.0e}", index2 ? "index2" : "index3", rho, h),
+              {},
+              0,
+              0.0};
   stepper.initialize(0.0);
   trace.samples.push_back(meter.measure(0.0, stepper.positions(), stepper.velocities()));
   const long samples = std::lround(duration / kSampleInterval);
@@ -141,7 +149,8 @@ Trace run_generalized_alpha(const Scene& scene, double duration, double h, doubl
     const auto start = std::chrono::steady_clock::now();
     stepper.advance_to(static_cast<double>(k) * kSampleInterval);
     wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    trace.samples.push_back(meter.measure(stepper.time(), stepper.positions(), stepper.velocities()));
+    trace.samples.push_back(
+        meter.measure(stepper.time(), stepper.positions(), stepper.velocities()));
   }
   trace.steps = stepper.statistics().steps;
   trace.wall = wall;
@@ -153,7 +162,8 @@ Trace run_ida(const Scene& scene, double duration, double rtol) {
   IdaOptions o;
   o.rtol = rtol;
   const long samples = std::lround(duration / kSampleInterval);
-  for (long k = 1; k <= samples; ++k) o.output_times.push_back(static_cast<double>(k) * kSampleInterval);
+  for (long k = 1; k <= samples; ++k)
+    o.output_times.push_back(static_cast<double>(k) * kSampleInterval);
   Meter meter(scene.model);
   SystemState state = SystemState::initial(scene.model);
   Trace trace{fmt::format("ida_rtol{:.0e}", rtol), {}, 0, 0.0};
@@ -171,7 +181,8 @@ Trace run_ida(const Scene& scene, double duration, double rtol) {
 }
 
 struct Summary {
-  double max_error = 0.0, drift_rate = 0.0, max_phi = 0.0, max_phi_v = 0.0, max_momentum_error = 0.0;
+  double max_error = 0.0, drift_rate = 0.0, max_phi = 0.0, max_phi_v = 0.0,
+         max_momentum_error = 0.0;
 };
 
 Summary summarize(const Trace& trace, double energy_scale, bool momentum) {
@@ -185,7 +196,8 @@ Summary summarize(const Trace& trace, double energy_scale, bool momentum) {
     s.max_phi = std::max(s.max_phi, x.phi);
     s.max_phi_v = std::max(s.max_phi_v, x.phi_v);
     if (momentum)
-      s.max_momentum_error = std::max(s.max_momentum_error, std::abs(x.momentum - first.momentum) / first.momentum);
+      s.max_momentum_error =
+          std::max(s.max_momentum_error, std::abs(x.momentum - first.momentum) / first.momentum);
     st += x.t, se += e, stt += x.t * x.t, ste += x.t * e;
   }
   const auto n = static_cast<double>(trace.samples.size());
@@ -200,30 +212,46 @@ void write_trace(const std::filesystem::path& dir, const Scene& scene, const Tra
   for (const Sample& x : trace.samples)
     out.print("{:.6f},{:.12e},{:.6e},{:.6e},{:.6e},{}\n", x.t, x.energy,
               (x.energy - first.energy) / scene.energy_scale, x.phi, x.phi_v,
-              scene.conserves_momentum ? fmt::format("{:.6e}", (x.momentum - first.momentum) / first.momentum)
-                                       : std::string("nan"));
+              scene.conserves_momentum
+                  ? fmt::format("{:.6e}", (x.momentum - first.momentum) / first.momentum)
+                  : std::string("nan"));
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::filesystem::path dir = argc > 1 ? argv[1] : "out/energy_drift";
-  const double duration = argc > 2 ? std::atof(argv[2]) : 20.0;
+  std::vector<std::string> positional;
+  bool with_ida = true;
+  for (int i = 1; i < argc; ++i) {
+    if (std::string(argv[i]) == "--no-ida")
+      with_ida = false;
+    else
+      positional.emplace_back(argv[i]);
+  }
+  const std::filesystem::path dir = positional.size() > 0 ? positional[0] : "out/energy_drift";
+  const double duration = positional.size() > 1 ? std::atof(positional[1].c_str()) : 20.0;
+  if (!(duration > 0.0)) {
+    fmt::print(stderr, "usage: {} [output directory] [duration > 0] [--no-ida]\n", argv[0]);
+    return 2;
+  }
   std::filesystem::create_directories(dir);
   auto summary = fmt::output_file((dir / "summary.csv").string());
-  summary.print("scene,run,max_abs_rel_energy_error,drift_rate_per_s,max_abs_phi,max_abs_phi_v,"
-                "max_rel_angular_momentum_error,steps,wall_s\n");
-  fmt::print("{:9} {:32} {:>11} {:>11} {:>10} {:>10} {:>10} {:>7} {:>7}\n", "scene", "run", "max|dE|/E", "drift [1/s]",
-             "max|Phi|", "max|Phi_v|", "max|dL|/L", "steps", "wall[s]");
+  summary.print(
+      "scene,run,max_abs_rel_energy_error,drift_rate_per_s,max_abs_phi,max_abs_phi_v,"
+      "max_rel_angular_momentum_error,steps,wall_s\n");
+  fmt::print("{:9} {:32} {:>11} {:>11} {:>10} {:>10} {:>10} {:>7} {:>7}\n", "scene", "run",
+             "max|dE|/E", "drift [1/s]", "max|Phi|", "max|Phi_v|", "max|dL|/L", "steps", "wall[s]");
   for (Scene scene : {pendulum_scene(), spinning_scene(), rigid_scene()}) {
     std::vector<std::function<Trace()>> runs;
     for (const double h : {2e-3, 1e-3, 5e-4}) {
       for (const double rho : {0.9, 0.6})
-        runs.emplace_back([&, h, rho] { return run_generalized_alpha(scene, duration, h, rho, false); });
+        runs.emplace_back(
+            [&, h, rho] { return run_generalized_alpha(scene, duration, h, rho, false); });
       runs.emplace_back([&, h] { return run_generalized_alpha(scene, duration, h, 1.0, true); });
     }
-    for (const double rtol : {1e-4, 1e-6, 1e-8})
-      runs.emplace_back([&, rtol] { return run_ida(scene, duration, rtol); });
+    if (with_ida)
+      for (const double rtol : {1e-4, 1e-6, 1e-8})
+        runs.emplace_back([&, rtol] { return run_ida(scene, duration, rtol); });
     for (const auto& run : runs) {
       Trace trace;
       try {
@@ -234,10 +262,12 @@ int main(int argc, char** argv) {
       }
       write_trace(dir, scene, trace);
       const Summary s = summarize(trace, scene.energy_scale, scene.conserves_momentum);
-      summary.print("{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{},{:.4f}\n", scene.name, trace.run, s.max_error,
-                    s.drift_rate, s.max_phi, s.max_phi_v, s.max_momentum_error, trace.steps, trace.wall);
-      fmt::print("{:9} {:32} {:11.3e} {:11.3e} {:10.2e} {:10.2e} {:10.2e} {:7} {:7.3f}\n", scene.name, trace.run,
-                 s.max_error, s.drift_rate, s.max_phi, s.max_phi_v, s.max_momentum_error, trace.steps, trace.wall);
+      summary.print("{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{},{:.4f}\n", scene.name, trace.run,
+                    s.max_error, s.drift_rate, s.max_phi, s.max_phi_v, s.max_momentum_error,
+                    trace.steps, trace.wall);
+      fmt::print("{:9} {:32} {:11.3e} {:11.3e} {:10.2e} {:10.2e} {:10.2e} {:7} {:7.3f}\n",
+                 scene.name, trace.run, s.max_error, s.drift_rate, s.max_phi, s.max_phi_v,
+                 s.max_momentum_error, trace.steps, trace.wall);
     }
   }
   fmt::print("CSV written to {}\n", dir.string());

@@ -7,18 +7,18 @@
 //  * wall time per element per step, median over several runs, and the deterministic counters
 //    (Newton iterations, residuals, matrix assemblies and factorizations per step);
 //  * tip positions at 0.25, 0.5 and 1.0 s and their distance to (a) a reference with h = 1e-5
-//    (tight Newton tolerance), i.e. the discretization error at this h, and (b) the same h with full
-//    Newton at a tight tolerance, i.e. the part of the error due to the Newton setting. (b) ≪ (a)
-//    shows the speed is not bought with accuracy: the accuracy is that of the step size.
+//    (tight Newton tolerance), i.e. the discretization error at this h, and (b) the same h with
+//    full Newton at a tight tolerance, i.e. the part of the error due to the Newton setting. (b) ≪
+//    (a) shows the speed is not bought with accuracy: the accuracy is that of the step size.
 //
 // Usage: ancf-bench-genalpha [--elements N] [--step H] [--rho R] [--runs K] [--rtol TOL]
 //                            [--reuse-rate R] [--extrapolate] [--no-reference] [--profile]
+#include <fmt/format.h>
 #include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdio>
-#include <cstring>
-#include <fmt/format.h>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -83,17 +83,20 @@ void profile_kernels(const ancf::Model& model, const GeneralizedAlphaOptions& op
     return t[t.size() / 2] * 1e6;
   };
   const double t_res = time([&] { problem.residual(0.0, q, v, a, l, ancf::as_span(r)); });
-  const double t_mat = time([&] { problem.iteration_matrix(0.0, q, v, a, l, weights, ancf::as_span(values)); });
+  const double t_mat =
+      time([&] { problem.iteration_matrix(0.0, q, v, a, l, weights, ancf::as_span(values)); });
   const double t_fac = time([&] { klu.factor(ancf::as_span(values)); });
   const double t_sol = time([&] { klu.solve(ancf::as_span(r)); });
-  fmt::print("kernel costs (median, us): residual {:.2f}, iteration matrix {:.2f}, KLU refactor {:.2f}, "
-             "KLU solve {:.2f}\n",
-             t_res, t_mat, t_fac, t_sol);
+  fmt::print(
+      "kernel costs (median, us): residual {:.2f}, iteration matrix {:.2f}, KLU refactor {:.2f}, "
+      "KLU solve {:.2f}\n",
+      t_res, t_mat, t_fac, t_sol);
 }
 
 double max_tip_distance(const Run& a, const Run& b) {
   double d = 0.0;
-  for (std::size_t k = 0; k < kOutputTimes.size(); ++k) d = std::max(d, (a.tip[k] - b.tip[k]).norm());
+  for (std::size_t k = 0; k < kOutputTimes.size(); ++k)
+    d = std::max(d, (a.tip[k] - b.tip[k]).norm());
   return d;
 }
 
@@ -114,15 +117,24 @@ int main(int argc, char** argv) {
       }
       return argv[++i];
     };
-    if (arg == "--elements") elements = std::stol(value());
-    else if (arg == "--step") step = std::stod(value());
-    else if (arg == "--rho") rho = std::stod(value());
-    else if (arg == "--runs") runs = std::stoi(value());
-    else if (arg == "--rtol") rtol = std::stod(value());
-    else if (arg == "--reuse-rate") reuse_rate = std::stod(value());
-    else if (arg == "--extrapolate") extrapolate = true;
-    else if (arg == "--no-reference") reference = false;
-    else if (arg == "--profile") profile = true;
+    if (arg == "--elements")
+      elements = std::stol(value());
+    else if (arg == "--step")
+      step = std::stod(value());
+    else if (arg == "--rho")
+      rho = std::stod(value());
+    else if (arg == "--runs")
+      runs = std::stoi(value());
+    else if (arg == "--rtol")
+      rtol = std::stod(value());
+    else if (arg == "--reuse-rate")
+      reuse_rate = std::stod(value());
+    else if (arg == "--extrapolate")
+      extrapolate = true;
+    else if (arg == "--no-reference")
+      reference = false;
+    else if (arg == "--profile")
+      profile = true;
     else {
       std::fprintf(stderr,
                    "usage: %s [--elements N] [--step H] [--rho R] [--runs K] [--rtol TOL] "
@@ -156,23 +168,25 @@ int main(int argc, char** argv) {
   const auto steps = static_cast<double>(last.stats.steps);
   const double per_element_step = median / (steps * static_cast<double>(elements)) * 1e6;
 
-  fmt::print("generalized-α benchmark: cable pendulum (REFERENCES §10), {} elements, {} unknowns, "
-             "h = {:g} s, rho_inf = {:g}, modified Newton, rtol = {:g}\n",
-             elements, model.system_size(), step, rho, rtol);
-  fmt::print("wall time over [0, 1] s: median {:.4f} s of {} runs (min {:.4f}, max {:.4f})\n", median,
-             runs, seconds.front(), seconds.back());
+  fmt::print(
+      "generalized-α benchmark: cable pendulum (REFERENCES §10), {} elements, {} unknowns, "
+      "h = {:g} s, rho_inf = {:g}, modified Newton, rtol = {:g}\n",
+      elements, model.system_size(), step, rho, rtol);
+  fmt::print("wall time over [0, 1] s: median {:.4f} s of {} runs (min {:.4f}, max {:.4f})\n",
+             median, runs, seconds.front(), seconds.back());
   fmt::print("  => {:.3f} us per element per step  ({:.2f} us per step)\n", per_element_step,
              median / steps * 1e6);
   const auto& s = last.stats;
-  fmt::print("counters: {} steps, {:.3f} Newton iterations/step, {:.3f} residuals/step, "
-             "{:.4f} matrix assemblies/step, {:.4f} factorizations/step ({} with fresh pivoting), "
-             "{} convergence failures, {} halvings\n",
-             s.steps, s.newton_iterations / steps, s.residual_evaluations / steps,
-             s.matrix_evaluations / steps, s.factorizations / steps, s.full_factorizations,
-             s.convergence_failures, s.step_halvings);
+  fmt::print(
+      "counters: {} steps, {:.3f} Newton iterations/step, {:.3f} residuals/step, "
+      "{:.4f} matrix assemblies/step, {:.4f} factorizations/step ({} with fresh pivoting), "
+      "{} convergence failures, {} halvings\n",
+      s.steps, s.newton_iterations / steps, s.residual_evaluations / steps,
+      s.matrix_evaluations / steps, s.factorizations / steps, s.full_factorizations,
+      s.convergence_failures, s.step_halvings);
   for (std::size_t k = 0; k < kOutputTimes.size(); ++k)
-    fmt::print("tip at t = {:.2f} s: ({:+.9f}, {:+.9f}, {:+.9f}) m\n", kOutputTimes[k], last.tip[k].x(),
-               last.tip[k].y(), last.tip[k].z());
+    fmt::print("tip at t = {:.2f} s: ({:+.9f}, {:+.9f}, {:+.9f}) m\n", kOutputTimes[k],
+               last.tip[k].x(), last.tip[k].y(), last.tip[k].z());
 
   if (profile) profile_kernels(model, fast);
   if (reference) {
@@ -186,16 +200,19 @@ int main(int argc, char** argv) {
     tight.step_size = 1e-5;
     const Run fine = simulate(model, tight);
     for (std::size_t k = 0; k < kOutputTimes.size(); ++k)
-      fmt::print("reference (h = 1e-5) tip at t = {:.2f} s: ({:+.9f}, {:+.9f}, {:+.9f}) m; |error| of "
-                 "the fast run {:.3e} m\n",
-                 kOutputTimes[k], fine.tip[k].x(), fine.tip[k].y(), fine.tip[k].z(),
-                 (last.tip[k] - fine.tip[k]).norm());
-    fmt::print("max tip error vs h = 1e-5 reference: fast {:.3e} m, full Newton tight tolerance at the "
-               "same h {:.3e} m\n",
-               max_tip_distance(last, fine), max_tip_distance(same_h_tight, fine));
-    fmt::print("max tip difference fast vs full-Newton-tight at the same h (Newton part of the error): "
-               "{:.3e} m\n",
-               max_tip_distance(last, same_h_tight));
+      fmt::print(
+          "reference (h = 1e-5) tip at t = {:.2f} s: ({:+.9f}, {:+.9f}, {:+.9f}) m; |error| of "
+          "the fast run {:.3e} m\n",
+          kOutputTimes[k], fine.tip[k].x(), fine.tip[k].y(), fine.tip[k].z(),
+          (last.tip[k] - fine.tip[k]).norm());
+    fmt::print(
+        "max tip error vs h = 1e-5 reference: fast {:.3e} m, full Newton tight tolerance at the "
+        "same h {:.3e} m\n",
+        max_tip_distance(last, fine), max_tip_distance(same_h_tight, fine));
+    fmt::print(
+        "max tip difference fast vs full-Newton-tight at the same h (Newton part of the error): "
+        "{:.3e} m\n",
+        max_tip_distance(last, same_h_tight));
   }
   return 0;
 }

@@ -1,9 +1,9 @@
 #include "ancf/solvers/generalized_alpha.hpp"
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <fmt/format.h>
 #include <stdexcept>
 
 #include "ancf/core/error.hpp"
@@ -63,7 +63,8 @@ GeneralizedAlphaStepper::GeneralizedAlphaStepper(SecondOrderProblem& problem,
   const Index size = problem.system_size();
   for (VecX* v : {&q_, &v_, &acc_, &a_, &q1_, &v1_, &acc1_, &acc_previous_, &increment_})
     v->setZero(n_);
-  for (VecX* v : {&lambda_, &lambda1_, &lambda_previous_, &velocity_residual_, &phi_}) v->setZero(m_);
+  for (VecX* v : {&lambda_, &lambda1_, &lambda_previous_, &velocity_residual_, &phi_})
+    v->setZero(m_);
   weight_q_.setZero(n_);
   weight_v_.setZero(n_);
   residual_.setZero(size);
@@ -171,8 +172,8 @@ void GeneralizedAlphaStepper::initialize(double t0, const VecX& q0, const VecX& 
   halvings_in_a_row_ = 0;
   stats_.min_step = h_;
   initialized_ = true;
-  stats_.full_factorizations = klu_.full_factorizations() - klu_base_[0] +
-                               projector_.full_factorizations() - klu_base_[2];
+  stats_.full_factorizations =
+      klu_.full_factorizations() - klu_base_[0] + projector_.full_factorizations() - klu_base_[2];
   stats_.factorizations = stats_.full_factorizations + klu_.refactorizations() - klu_base_[1] +
                           projector_.refactorizations() - klu_base_[3];
 }
@@ -274,12 +275,13 @@ void GeneralizedAlphaStepper::update_weights(double gamma_prime) {
   // weights. Multipliers get one norm-wise weight: individual ones pass through zero (and have
   // unrelated units), so a per-component relative test would demand absolute accuracy atol_λ there.
   const double rtol = options_.rtol;
-  weight_q_ = (options_.atol_position + rtol * q_.cwiseAbs().cwiseMax(q1_.cwiseAbs()).array()).inverse();
+  weight_q_ =
+      (options_.atol_position + rtol * q_.cwiseAbs().cwiseMax(q1_.cwiseAbs()).array()).inverse();
   weight_v_ = gamma_prime /
               (options_.atol_velocity + rtol * v_.cwiseAbs().cwiseMax(v1_.cwiseAbs()).array());
   weight_lambda_ =
-      1.0 / (options_.atol_multiplier +
-             rtol * std::max(lambda_.lpNorm<Eigen::Infinity>(), lambda1_.lpNorm<Eigen::Infinity>()));
+      1.0 / (options_.atol_multiplier + rtol * std::max(lambda_.lpNorm<Eigen::Infinity>(),
+                                                        lambda1_.lpNorm<Eigen::Infinity>()));
 }
 
 double GeneralizedAlphaStepper::increment_norm(Index* worst) const {
@@ -288,9 +290,8 @@ double GeneralizedAlphaStepper::increment_norm(Index* worst) const {
   const double n = static_cast<double>(std::max<Index>(n_, 1));
   const double nq = std::sqrt((increment_.array() * weight_q_).square().sum() / n);
   const double nv = std::sqrt((rhs_.head(n_).array() * weight_v_).square().sum() / n);
-  const double nl = m_ == 0 ? 0.0
-                            : rhs_.tail(m_).norm() * weight_lambda_ /
-                                  std::sqrt(static_cast<double>(m_));
+  const double nl =
+      m_ == 0 ? 0.0 : rhs_.tail(m_).norm() * weight_lambda_ / std::sqrt(static_cast<double>(m_));
   if (worst) {
     // Only for error messages: the component with the largest weighted increment.
     Index iq = 0, iv = 0, il = 0;
@@ -312,6 +313,7 @@ GeneralizedAlphaStepper::Outcome GeneralizedAlphaStepper::newton(double t1, doub
   update_weights(gamma_prime);
   bool fresh = false;  // the matrix in use was built during this attempt
   int k = 0;           // iterations (modified Newton: with the matrix in use)
+  int rescues = 0;     // matrices rebuilt because the iteration stalled
   double previous_norm = 0.0;
   step_max_rate_ = 0.0;
   // Before a rate has been measured in this attempt, the remaining error after the first
@@ -370,11 +372,18 @@ GeneralizedAlphaStepper::Outcome GeneralizedAlphaStepper::newton(double t1, doub
     if (k > 1) {
       const double theta = norm / previous_norm;
       step_max_rate_ = std::max(step_max_rate_, theta);
-      // Divergence, or predicted failure: the remaining iterations cannot reach the tolerance at
-      // this rate. A stale matrix is rebuilt at the current iterate (once per attempt, with a
-      // fresh iteration budget); a fresh one means the step is too long.
-      if (theta >= 0.99 || std::pow(theta, left - 1) * theta / (1.0 - theta) * norm > 1.0) {
-        if (fresh) return Outcome::failed;
+      // Divergence (θ ≥ 0.99), or predicted failure: at this rate the remaining iterations cannot
+      // reach the tolerance (Hairer & Wanner §IV.8). Modified Newton then rebuilds the matrix at
+      // the current iterate and goes on with a fresh iteration budget (at most 3 times per
+      // attempt) — unless a matrix built in this attempt diverges outright: the step is then too
+      // long. Full Newton only stops on divergence: its early rates, far from the solution,
+      // improve as it converges quadratically.
+      const bool diverging = theta >= 0.99;
+      const bool predicted = std::pow(theta, left - 1) * theta / (1.0 - theta) * norm > 1.0;
+      if (diverging || (predicted && !full)) {
+        if (full || rescues >= 3 || (fresh && diverging))
+          return fresh ? Outcome::failed : Outcome::diverged_stale;
+        ++rescues;
         matrix_stale_ = true;
         left = options_.max_iterations + 1;
         previous_norm = 0.0;
@@ -467,8 +476,8 @@ void GeneralizedAlphaStepper::step(double t_limit) {
     ++stats_.step_halvings;
     klu_.reset_pivoting();
   }
-  stats_.full_factorizations = klu_.full_factorizations() - klu_base_[0] +
-                               projector_.full_factorizations() - klu_base_[2];
+  stats_.full_factorizations =
+      klu_.full_factorizations() - klu_base_[0] + projector_.full_factorizations() - klu_base_[2];
   stats_.factorizations = stats_.full_factorizations + klu_.refactorizations() - klu_base_[1] +
                           projector_.refactorizations() - klu_base_[3];
 }

@@ -32,7 +32,8 @@ void MultibodyProblem::iteration_matrix(double t, std::span<const double> q,
 }
 
 void MultibodyProblem::constraints(double t, std::span<const double> q, std::span<double> phi) {
-  // Φ alone, without the element loop of assemble_residual: each row is u·w + c (dot_constraint.hpp).
+  // Φ alone, without the element loop of assemble_residual: each row is u·w + c
+  // (dot_constraint.hpp).
   const auto frames = workspace_.frames_at(model_, t);
   for (Index i = 0; i < model_.multiplier_count(); ++i) {
     const DotConstraintRow& row = model_.rows()[i];

@@ -67,7 +67,7 @@ struct GeneralizedAlphaParameters {
 enum class GeneralizedAlphaFormulation { index3, stabilized_index2 };
 enum class GeneralizedAlphaStart {
   consistent,  ///< a_0 = q''(t_0)
-  perturbed,   ///< a_0 ≈ q''(t_0 + (α_m − α_f)h), index 3 also v_0 + O(h²) normal part (ABC 2015)
+  perturbed,  ///< a_0 ≈ q''(t_0 + (α_m − α_f)h), index 3 also v_0 + O(h²) normal part (ABC 2015)
 };
 /// Newton's starting point for q'' and λ (q, v follow from the update formulas).
 enum class GeneralizedAlphaPredictor {
@@ -118,17 +118,17 @@ struct GeneralizedAlphaOptions {
 
 /// Counters; deterministic where wall time is not (REFERENCES §9).
 struct GeneralizedAlphaStatistics {
-  long steps = 0;                 ///< accepted steps
-  long newton_iterations = 0;     ///< linear solves of the Newton iteration
+  long steps = 0;              ///< accepted steps
+  long newton_iterations = 0;  ///< linear solves of the Newton iteration
   long residual_evaluations = 0;
   long matrix_evaluations = 0;    ///< iteration-matrix assemblies
   long factorizations = 0;        ///< numeric factorizations (full + refactor, both matrices)
   long full_factorizations = 0;   ///< of those, with fresh pivoting
   long convergence_failures = 0;  ///< Newton failures (each followed by a retry or a halving)
   long step_halvings = 0;
-  long restarts = 0;              ///< starting procedures (initialize and every change of h)
-  double min_step = 0.0;          ///< smallest step taken [s]
-  double wall_seconds = 0.0;      ///< inside initialize/step/advance_to
+  long restarts = 0;          ///< starting procedures (initialize and every change of h)
+  double min_step = 0.0;      ///< smallest step taken [s]
+  double wall_seconds = 0.0;  ///< inside initialize/step/advance_to
 };
 
 /// Owns the KLU symbolic analysis of problem.iteration_pattern() (done once, in the
@@ -159,9 +159,9 @@ class GeneralizedAlphaStepper {
   [[nodiscard]] double time() const { return t_; }
   [[nodiscard]] const VecX& positions() const { return q_; }
   [[nodiscard]] const VecX& velocities() const { return v_; }
-  [[nodiscard]] const VecX& accelerations() const { return acc_; }            ///< q''
-  [[nodiscard]] const VecX& pseudo_accelerations() const { return a_; }       ///< a of (AB 7)
-  [[nodiscard]] const VecX& multipliers() const { return lambda_; }            ///< λ
+  [[nodiscard]] const VecX& accelerations() const { return acc_; }       ///< q''
+  [[nodiscard]] const VecX& pseudo_accelerations() const { return a_; }  ///< a of (AB 7)
+  [[nodiscard]] const VecX& multipliers() const { return lambda_; }      ///< λ
   [[nodiscard]] double current_step_size() const { return h_; }
   [[nodiscard]] const GeneralizedAlphaParameters& parameters() const { return params_; }
   [[nodiscard]] const GeneralizedAlphaOptions& options() const { return options_; }
@@ -210,12 +210,12 @@ class GeneralizedAlphaStepper {
   // Scratch.
   VecX residual_, rhs_, values_, projector_values_, velocity_residual_, increment_, phi_;
 
-  double h_ = 0.0;                   // current step size
-  double a_h_ = 0.0;                 // step size a_ is calibrated to (a ≈ q''(t + (α_m − α_f)h))
-  double matrix_h_ = -1.0;           // h the factorized matrix was built for (−1: none)
-  int matrix_age_ = 0;               // accepted steps since the matrix was built
-  bool matrix_stale_ = true;         // refresh before the next iteration
-  double eta_ = 1.0;                 // θ/(1 − θ) estimate carried across steps
+  double h_ = 0.0;            // current step size
+  double a_h_ = 0.0;          // step size a_ is calibrated to (a ≈ q''(t + (α_m − α_f)h))
+  double matrix_h_ = -1.0;    // h the factorized matrix was built for (−1: none)
+  int matrix_age_ = 0;        // accepted steps since the matrix was built
+  bool matrix_stale_ = true;  // refresh before the next iteration
+  double eta_ = 1.0;          // θ/(1 − θ) estimate carried across steps
   int steps_since_halving_ = 0;
   int halvings_in_a_row_ = 0;
   double step_max_rate_ = 0.0;       // largest contraction rate θ seen in the current step

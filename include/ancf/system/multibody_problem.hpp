@@ -19,7 +19,9 @@ class MultibodyProblem final : public SecondOrderProblem {
 
   [[nodiscard]] Index coordinate_count() const override { return model_.coordinate_count(); }
   [[nodiscard]] Index multiplier_count() const override { return model_.multiplier_count(); }
-  [[nodiscard]] const SparsityPattern& iteration_pattern() const override { return model_.pattern(); }
+  [[nodiscard]] const SparsityPattern& iteration_pattern() const override {
+    return model_.pattern();
+  }
 
   void residual(double t, std::span<const double> q, std::span<const double> v,
                 std::span<const double> a, std::span<const double> lambda,
@@ -36,8 +38,12 @@ class MultibodyProblem final : public SecondOrderProblem {
   [[nodiscard]] double energy(double t, std::span<const double> q,
                               std::span<const double> v) override;
   [[nodiscard]] std::string describe_row(Index i) const override { return model_.describe_row(i); }
-  [[nodiscard]] const VecX& initial_coordinates() const override { return model_.initial_coordinates(); }
-  [[nodiscard]] const VecX& initial_velocities() const override { return model_.initial_velocities(); }
+  [[nodiscard]] const VecX& initial_coordinates() const override {
+    return model_.initial_coordinates();
+  }
+  [[nodiscard]] const VecX& initial_velocities() const override {
+    return model_.initial_velocities();
+  }
 
   [[nodiscard]] const Model& model() const { return model_; }
 
