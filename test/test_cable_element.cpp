@@ -17,20 +17,14 @@
 #include "ancf/physics/cable_element.hpp"
 #include "ancf/system/cable_geometry.hpp"
 #include "fd_check.hpp"
+#include "random_geometry.hpp"
 
 namespace {
 using namespace ancf;
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
-Mat3 random_rotation(std::mt19937& rng) {  // uniform: normalised Gaussian quaternion
-  std::normal_distribution<double> n(0.0, 1.0);
-  return Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized().toRotationMatrix();
-}
-
-Vec3 random_vec3(std::mt19937& rng, double scale) {
-  std::normal_distribution<double> n(0.0, scale);
-  return {n(rng), n(rng), n(rng)};
-}
+using random_geometry::random_rotation;
+using random_geometry::random_vec3;
 
 // ---- Test configurations ------------------------------------------------------------------------
 

@@ -35,6 +35,7 @@
 #include "ancf/physics/joints.hpp"
 #include "ancf/physics/rigid_body.hpp"
 #include "fd_check.hpp"
+#include "random_geometry.hpp"
 
 namespace {
 using namespace ancf;
@@ -45,15 +46,8 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr Index kNodeA = 0, kNodeB = 6, kBody1 = 12, kBody2 = 24, kSize = 36;
 using Frames = std::vector<FrameKinematics>;
 
-Mat3 random_rotation(std::mt19937& rng) {  // uniform: normalised Gaussian quaternion
-  std::normal_distribution<double> n(0.0, 1.0);
-  return Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized().toRotationMatrix();
-}
-
-Vec3 random_vec3(std::mt19937& rng, double scale) {
-  std::normal_distribution<double> n(0.0, scale);
-  return {n(rng), n(rng), n(rng)};
-}
+using random_geometry::random_rotation;
+using random_geometry::random_vec3;
 
 VecX random_vector(std::mt19937& rng, Index size, double scale) {
   std::normal_distribution<double> n(0.0, scale);

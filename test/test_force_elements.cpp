@@ -23,6 +23,7 @@
 #include "ancf/physics/force_elements.hpp"
 #include "ancf/physics/rigid_body.hpp"
 #include "fd_check.hpp"
+#include "random_geometry.hpp"
 
 // ---- Allocation counter -------------------------------------------------------------------------
 // evaluate() must not touch the heap. Eigen allocates with std::malloc and operator new ends in
@@ -59,15 +60,8 @@ constexpr double kPi = std::numbers::pi;
 constexpr Index kNode = 0, kBody1 = 6, kBody2 = 18, kDofs = 30;
 constexpr int kSeeds = 20;
 
-Mat3 random_rotation(std::mt19937& rng) {  // uniform: normalised Gaussian quaternion
-  std::normal_distribution<double> n(0.0, 1.0);
-  return Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized().toRotationMatrix();
-}
-
-Vec3 random_vec3(std::mt19937& rng, double scale) {
-  std::normal_distribution<double> n(0.0, scale);
-  return {n(rng), n(rng), n(rng)};
-}
+using random_geometry::random_rotation;
+using random_geometry::random_vec3;
 
 Vec3 random_unit(std::mt19937& rng) {
   return random_vec3(rng, 1.0).normalized();

@@ -28,6 +28,7 @@
 #include "ancf/physics/driven_frame.hpp"
 #include "ancf/physics/rigid_body.hpp"
 #include "fd_check.hpp"
+#include "random_geometry.hpp"
 
 namespace {
 using namespace ancf;
@@ -36,15 +37,8 @@ constexpr double kPi = std::numbers::pi;
 
 // ---- Helpers ------------------------------------------------------------------------------------
 
-Mat3 random_rotation(std::mt19937& rng) {  // uniform: normalised Gaussian quaternion
-  std::normal_distribution<double> n(0.0, 1.0);
-  return Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized().toRotationMatrix();
-}
-
-Vec3 random_vec3(std::mt19937& rng, double scale) {
-  std::normal_distribution<double> n(0.0, scale);
-  return {n(rng), n(rng), n(rng)};
-}
+using random_geometry::random_rotation;
+using random_geometry::random_vec3;
 
 double log_uniform(std::mt19937& rng, double lo, double hi) {
   std::uniform_real_distribution<double> u(std::log(lo), std::log(hi));
