@@ -36,11 +36,13 @@ inline void add_mass_times(const Mat4& m4, Index base, const VecX& x, Eigen::Map
 // they are separate blocks. One template serves both, so the loops over elements, bodies, force
 // elements and constraint rows exist once.
 struct OwnPattern {
+  static constexpr bool kSharedBlocks = true;  // position and velocity terms share one slot
   std::span<double> values;
   double& position(Index s) const { return values[s]; }
   double& velocity(Index s) const { return values[s]; }
 };
 struct Scattered {
+  static constexpr bool kSharedBlocks = false;
   std::span<double> values;
   const MatrixScatter& map;
   double& position(Index s) const { return values[map.position[s]]; }
@@ -91,12 +93,22 @@ void add_iteration_matrix_to(const Model& model, const SystemState& state,
         const bool damping = request.damping_matrix && c.section.has_damping();
         if (request.stiffness || damping) {
           evaluate_cable_element(c.section, c.elements[j], e, e_dot, request, ws.element);
-          if (request.stiffness)
-            for (int k = 0; k < 144; ++k)
-              t.position(slots[k]) += w.w_q * ws.element.stiffness.data()[k];
-          if (damping)
-            for (int k = 0; k < 144; ++k)
-              t.velocity(slots[k]) += w.w_v * ws.element.damping.data()[k];
+          const double* k_e = ws.element.stiffness.data();
+          const double* d_e = ws.element.damping.data();
+          if constexpr (Target::kSharedBlocks) {
+            // One pass writes w_q K + w_v D (the two blocks share slots in the model's pattern).
+            if (request.stiffness && damping)
+              for (int k = 0; k < 144; ++k) t.position(slots[k]) += w.w_q * k_e[k] + w.w_v * d_e[k];
+            else if (request.stiffness)
+              for (int k = 0; k < 144; ++k) t.position(slots[k]) += w.w_q * k_e[k];
+            else
+              for (int k = 0; k < 144; ++k) t.velocity(slots[k]) += w.w_v * d_e[k];
+          } else {
+            if (request.stiffness)
+              for (int k = 0; k < 144; ++k) t.position(slots[k]) += w.w_q * k_e[k];
+            if (damping)
+              for (int k = 0; k < 144; ++k) t.velocity(slots[k]) += w.w_v * d_e[k];
+          }
         }
         if (w.w_a != 0.0) add_mass_matrix(c.mass[j], slots, w.w_a, t);
       });
