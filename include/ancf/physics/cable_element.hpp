@@ -34,6 +34,7 @@ struct CableSection {
   double prestrain = 0.0;          ///< ε_p [-]: the reference carries axial force EA·ε_p
   double axial_damping = 0.0;      ///< c_a [N s]: Kelvin–Voigt axial force c_a ε̇
   double bending_damping = 0.0;    ///< c_b [N m² s]: Kelvin–Voigt bending moment c_b κ̇
+  double radius = 0.0;             ///< r [m] of the cross-section; used only by contact (> 0 there)
 
   [[nodiscard]] bool has_bending() const { return bending_stiffness > 0.0 || bending_damping > 0.0; }
   [[nodiscard]] bool has_damping() const { return axial_damping > 0.0 || bending_damping > 0.0; }

@@ -12,6 +12,8 @@
 #include <variant>
 #include <vector>
 
+#include "ancf/physics/contact_law.hpp"
+#include "ancf/physics/contact_shapes.hpp"
 #include "ancf/physics/joints.hpp"
 #include "ancf/system/model.hpp"
 
@@ -74,6 +76,22 @@ class ModelBuilder {
   /// revolute_to_ground()); θ = 0 at the initial configuration, positive about the joint axis.
   void add_revolute_drive(std::string name, const std::string& joint, AngleLaw reference,
                           double kp, double kd, double torque_max);
+
+  // --- contact (DESIGN §5; contact_law.hpp, contact_shapes.hpp, cable_contact.hpp) -------------
+  /// Add a named shape fixed to ground (shape data in global coordinates), to a driven frame or
+  /// to a rigid body (shape data in that frame / body frame). Returns the shape index.
+  Index add_ground_shape(std::string name, const ContactShape& shape);
+  Index add_frame_shape(std::string name, int frame, const ContactShape& shape);
+  Index add_body_shape(std::string name, Index body, const ContactShape& shape);
+  /// Candidate contact pair between cable `cable` (its CableSection::radius must be > 0) and the
+  /// shape `shape`: `samples_per_element` ≥ 1 points per element at ξ = (k + ½)/N, each weighing
+  /// l/N. The pattern reserves the cable–body blocks of every element, so KLU analyses once.
+  void add_cable_shape_contact(std::string name, Index cable, Index shape, const ContactLaw& law,
+                               int samples_per_element);
+  /// Candidate contact pair between two different cables (both radii > 0): samples of cable a
+  /// against the closest point of cable b. Reserves every element-pair block.
+  void add_cable_cable_contact(std::string name, Index cable_a, Index cable_b,
+                               const ContactLaw& law, int samples_per_element);
 
   // --- constraints on cable nodes -------------------------------------------------------------
   /// Node position fixed at `target` [m] (3 rows).
