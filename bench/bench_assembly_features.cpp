@@ -10,7 +10,13 @@
 //   4 gravity         + gravity: a constant load folded into Model::constant_load() at finalize();
 //   5 remote_body     + one rigid body far from the cable, spherical joint to ground, and one
 //                     spring-damper body–ground: features present, but not on the cable;
-//   6 hanging_bodies  + 50 rigid bodies, each hung from ground on a spring-damper (features scale).
+//   6 hanging_bodies  + 50 rigid bodies, each hung from ground on a spring-damper (features scale);
+//   7 second_cable    + a second 200-element cable and a free rigid drum, both 50 m away;
+//   8 far_contact     variant 7 + contact pairs that cannot touch: cable–cable (the two cables),
+//                     cable–drum (capped cylinder on the body), both cables against a ground plane
+//                     100 m below (friction and Hunt–Crossley damping on);
+//   9 far_contact_local  variant 8 with the cable–cable pair restricted to 20 candidate elements of
+//                     each cable (ElementRange), as a scene would declare a local contact zone.
 //
 // Expected outcome (what the table must show for the claim to hold):
 //   * variant 1 ≈ 200 × the element kernel (BM_ElementForce/green_axial for the residual,
@@ -22,6 +28,11 @@
 //     block and one spring);
 //   * 2 and 3 cost more, and exactly because their kernels run: their extra time over 1 matches
 //     the extra time of their kernel sweep over the axial sweep (×200), the scatter is unchanged;
+//   * the residual of 8 and 9 costs about the same as 7 (the broad phase: element boxes refreshed
+//     per call, whole-cable boxes cull every pair, no sample reaches a narrow-phase kernel);
+//   * the matrix of 8 costs more than 7 by the zeroing of the reserved coupling blocks: the full
+//     200 × 200 element cable–cable pair reserves 2·144·200² ≈ 2.9M entries (the price of a fixed
+//     pattern, paid also by KLU); 9 reserves 2·144·20² and costs about the same as 7.
 //   * 6 costs more in proportion to the 50 bodies (6 orthonormality rows + 1 spring + 1 mass block
 //     each); the per-body cost is (t6 − t1)/50 and is independent of the cable.
 // The benchmarks report s_per_element = time / 200 cable elements (also for 5 and 6, where it then
@@ -47,7 +58,9 @@ using ancf::Mat3;
 using ancf::Vec3;
 using ancf::VecX;
 
-enum class Variant { axial, bending, damping, gravity, remote_body, hanging_bodies };
+enum class Variant {
+  axial, bending, damping, gravity, remote_body, hanging_bodies, second_cable, far_contact, far_contact_local
+};
 
 constexpr Index kElements = 200;
 constexpr double kElementLength = 0.1;  // [m], as in bench_cable_element.cpp
@@ -60,6 +73,7 @@ ancf::CableSection section_for(Variant v) {
   s.mass_per_length = 0.15;
   if (v == Variant::bending) s.bending_stiffness = 6.0;  // EI [N m²]
   if (v == Variant::damping) s.axial_damping = 40.0;     // c_a [N s]
+  s.radius = 0.005;                                      // only read by contact pairs [m]
   return s;
 }
 
@@ -116,6 +130,29 @@ ancf::Model features_scene(Variant v) {
                                     Vec3(0.01 * i, 0.0, -0.1), Vec3(0.0, 0.2, 0.01 * i));
       b.add_spring_damper(name + " spring", ancf::BodyPoint{body, Vec3(0.0, 0.0, 0.1)},
                           ancf::GroundPoint{at + Vec3(0.0, 0.0, 1.1)}, 500.0, 5.0);
+    }
+  }
+  if (v == Variant::second_cable || v == Variant::far_contact || v == Variant::far_contact_local) {
+    const Index other = b.add_cable("far cable",
+                                    ancf::straight_cable(Vec3(0.0, 50.0, 0.0), Vec3(20.0, 50.0, 0.0), kElements),
+                                    section_for(v));
+    const Index drum = b.add_body("far drum", box(5.0, Vec3(0.3, 0.3, 1.0)), Vec3(10.0, -50.0, 0.0),
+                                  Mat3::Identity(), Vec3(0.0, 0.1, 0.0), Vec3(0.0, 0.0, 0.5));
+    if (v == Variant::far_contact || v == Variant::far_contact_local) {
+      ancf::ContactLaw law;
+      law.stiffness = 1e6;
+      law.onset_depth = 1e-4;
+      law.damping = 1.0;
+      law.friction = 0.3;
+      const Index cylinder = b.add_body_shape("drum surface", drum, ancf::CappedCylinderShape{Vec3::Zero(), Vec3::UnitZ(), 0.15, 0.5});
+      const Index floor = b.add_ground_shape("floor", ancf::PlaneShape{Vec3(0.0, 0.0, -100.0), Vec3::UnitZ()});
+      if (v == Variant::far_contact)
+        b.add_cable_cable_contact("cables", cable, other, law, 3);
+      else
+        b.add_cable_cable_contact("cables", cable, other, law, 3, {180, 20}, {0, 20});
+      b.add_cable_shape_contact("cable-drum", cable, cylinder, law, 3);
+      b.add_cable_shape_contact("cable-floor", cable, floor, law, 3);
+      b.add_cable_shape_contact("far cable-floor", other, floor, law, 3);
     }
   }
   return b.finalize();
@@ -213,6 +250,9 @@ BENCHMARK_CAPTURE(BM_FeaturesResidual, 5_remote_body, Variant::remote_body)
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_FeaturesResidual, 6_hanging_bodies, Variant::hanging_bodies)
     ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_FeaturesResidual, 7_second_cable, Variant::second_cable)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_FeaturesResidual, 8_far_contact, Variant::far_contact)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_FeaturesResidual, 9_far_contact_local, Variant::far_contact_local)->Unit(benchmark::kMicrosecond);
 
 BENCHMARK_CAPTURE(BM_FeaturesMatrix, 1_axial, Variant::axial)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_FeaturesMatrix, 2_bending, Variant::bending)->Unit(benchmark::kMicrosecond);
@@ -222,6 +262,9 @@ BENCHMARK_CAPTURE(BM_FeaturesMatrix, 5_remote_body, Variant::remote_body)
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_FeaturesMatrix, 6_hanging_bodies, Variant::hanging_bodies)
     ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_FeaturesMatrix, 7_second_cable, Variant::second_cable)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_FeaturesMatrix, 8_far_contact, Variant::far_contact)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_FeaturesMatrix, 9_far_contact_local, Variant::far_contact_local)->Unit(benchmark::kMicrosecond);
 
 BENCHMARK_CAPTURE(BM_FeaturesKernelSweep, residual_1_axial, Variant::axial, false)
     ->Unit(benchmark::kMicrosecond);

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "contact_sampling.hpp"
+
 namespace ancf {
 namespace {
 
@@ -77,6 +79,45 @@ void subtract_force_jacobian(const std::vector<Index>& slots, const ForceResult&
     }
 }
 
+// Contact samples: −Q into the dynamic rows of both sides.
+class ResidualContactSink final : public detail::ContactSink {
+ public:
+  explicit ResidualContactSink(Eigen::Map<VecX>& r) : r_(r) {}
+  void add(const ContactSampleResult& s, const detail::ContactSampleBlocks& b) override {
+    r_.segment<12>(b.first_a) -= s.force.head<12>();
+    if (b.first_b >= 0) r_.segment<12>(b.first_b) -= s.force.tail<12>();
+  }
+
+ private:
+  Eigen::Map<VecX>& r_;
+};
+
+// Contact samples: −w_q ∂Q/∂q and −w_v ∂Q/∂v into the four 12×12 blocks of each sample.
+template <class Target>
+class MatrixContactSink final : public detail::ContactSink {
+ public:
+  MatrixContactSink(const Target& t, double w_q, double w_v) : t_(t), w_q_(w_q), w_v_(w_v) {}
+  void add(const ContactSampleResult& s, const detail::ContactSampleBlocks& b) override {
+    scatter(s, *b.aa, 0, 0);
+    if (b.first_b < 0) return;
+    scatter(s, *b.ab, 0, 12);
+    scatter(s, *b.ba, 12, 0);
+    scatter(s, *b.bb, 12, 12);
+  }
+
+ private:
+  void scatter(const ContactSampleResult& s, const BlockSlots& slots, int r0, int c0) const {
+    for (int c = 0; c < 12; ++c)
+      for (int r = 0; r < 12; ++r) {
+        const Index slot = slots[12 * c + r];
+        if (w_q_ != 0.0) t_.position(slot) -= w_q_ * s.d_force_dq(r0 + r, c0 + c);
+        if (w_v_ != 0.0) t_.velocity(slot) -= w_v_ * s.d_force_dv(r0 + r, c0 + c);
+      }
+  }
+  const Target& t_;
+  double w_q_, w_v_;
+};
+
 // The iteration matrix w_q K + w_v D + w_a M with the constraint blocks, added into `t`.
 // Each cable element kernel runs once, returning K and D together.
 template <class Target>
@@ -129,6 +170,10 @@ void add_iteration_matrix_to(const Model& model, const SystemState& state,
     evaluate(f.element, q, v, state.t, ws.force);
     subtract_force_jacobian(f.slots, ws.force, w.w_q, w.w_v, t);
   }
+  if (model.contact_pair_count() > 0 && (w.w_q != 0.0 || w.w_v != 0.0)) {
+    MatrixContactSink<Target> sink(t, w.w_q, w.w_v);
+    detail::visit_contact_samples(model, state, ws, {.jacobians = true, .all_samples = false}, sink);
+  }
 
   // Constraint blocks Φ_q, Φ_qᵀ and the geometric stiffness w_q ∂(Φ_qᵀλ)/∂q = w_q λ α_k β_m I₃.
   BlockVec gu, gw;
@@ -169,7 +214,18 @@ SystemState SystemState::initial(const Model& model) {
   return s;
 }
 
-Workspace::Workspace(const Model& model) : frames(model.frames().size()) {}
+Workspace::Workspace(const Model& model)
+    : frames(model.frames().size()), element_boxes(model.cables().size()), cable_boxes(model.cables().size()) {
+  auto reserve = [&](Index cable) { element_boxes[cable].resize(model.cables()[cable].elements.size()); };
+  std::size_t most = 0;
+  for (const auto& c : model.cable_shape_contacts()) reserve(c.cable);
+  for (const auto& c : model.cable_cable_contacts()) {
+    reserve(c.cable_a);
+    reserve(c.cable_b);
+    most = std::max(most, static_cast<std::size_t>(c.count_b));
+  }
+  candidates.reserve(most);
+}
 
 std::span<const FrameKinematics> Workspace::frames_at(const Model& model, double t) {
   if (!frames_valid || t != frames_time) {
@@ -213,6 +269,10 @@ void assemble_residual(const Model& model, const SystemState& state, double load
   for (const auto& f : model.drives()) {
     evaluate(f.element, q, v, state.t, ws.force);
     subtract_force(f.blocks, ws.force, 1.0, rq);
+  }
+  if (model.contact_pair_count() > 0) {
+    ResidualContactSink sink(rq);
+    detail::visit_contact_samples(model, state, ws, {.jacobians = false, .all_samples = false}, sink);
   }
 
   BlockVec gu, gw;

@@ -39,6 +39,13 @@ std::string Model::describe_row(Index row) const {
   return "row " + std::to_string(row) + " (outside the system)";
 }
 
+const std::string& Model::contact_pair_name(Index pair) const {
+  const auto n_shape = static_cast<Index>(cable_shape_contacts_.size());
+  if (pair < 0 || pair >= contact_pair_count())
+    throw ModelError("no contact pair with index " + std::to_string(pair));
+  return pair < n_shape ? cable_shape_contacts_[pair].name : cable_cable_contacts_[pair - n_shape].name;
+}
+
 Index Model::find_constraint(const std::string& name) const {
   for (std::size_t k = 0; k < constraints_.size(); ++k)
     if (constraints_[k].name == name) return static_cast<Index>(k);

@@ -50,6 +50,10 @@ void ModelBuilder::require_new_name(const std::string& name, const char* what) c
     if (c.name == name) throw ModelError(std::string(what) + ": the name '" + name + "' is already used by a constraint");
   for (const auto& f : forces_)
     if (f.name == name) throw ModelError(std::string(what) + ": the name '" + name + "' is already used by a force element");
+  for (const auto& c : cable_shape_contacts_)
+    if (c.name == name) throw ModelError(std::string(what) + ": the name '" + name + "' is already used by a contact pair");
+  for (const auto& c : cable_cable_contacts_)
+    if (c.name == name) throw ModelError(std::string(what) + ": the name '" + name + "' is already used by a contact pair");
 }
 
 Index ModelBuilder::add_cable(std::string name, const CableGeometry& reference,
@@ -444,6 +448,7 @@ Model ModelBuilder::finalize() {
   for (const BodyData& b : m.bodies_) push_rows(b.name + ".orthonormality", body_orthonormality(b.first_coordinate));
   for (const PendingConstraint& pc : constraints_) push_rows(pc.name, pc.rows(o));
   for (const PendingForce& f : forces_) f.add(o, m);
+  finalize_contacts(o, m);
 
   check_redundancy(m);
   build_pattern_and_slots(m);

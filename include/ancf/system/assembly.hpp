@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "ancf/physics/cable_contact.hpp"
 #include "ancf/system/model.hpp"
 
 namespace ancf {
@@ -27,6 +28,13 @@ struct Workspace {
   bool frames_valid = false;
   CableElementResult element;
   ForceResult force;
+  // Contact scratch, sized here so that a time step allocates nothing: element and cable boxes
+  // of the cables in contact pairs (empty for the others), candidate elements, one sample result.
+  std::vector<std::vector<Aabb>> element_boxes;
+  std::vector<Aabb> cable_boxes;
+  std::vector<Index> candidates;
+  ContactSampleResult contact;
+  long narrow_phase_samples = 0;  ///< contact samples that reached a kernel (cumulative counter)
   explicit Workspace(const Model& model);
   /// Frame kinematics at t (recomputed only when t changes).
   std::span<const FrameKinematics> frames_at(const Model& model, double t);

@@ -14,6 +14,7 @@
 #include "ancf/physics/force_elements.hpp"
 #include "ancf/physics/rigid_body.hpp"
 #include "ancf/system/cable_geometry.hpp"
+#include "ancf/system/contact_data.hpp"
 
 namespace ancf {
 
@@ -72,6 +73,15 @@ class Model {
   [[nodiscard]] const std::vector<ForceElementData<BodyTorque>>& body_torques() const { return torques_; }
   [[nodiscard]] const std::vector<ForceElementData<RevoluteDrive>>& drives() const { return drives_; }
 
+  [[nodiscard]] const std::vector<ContactShapeData>& shapes() const { return shapes_; }
+  [[nodiscard]] const std::vector<CableShapeContactData>& cable_shape_contacts() const { return cable_shape_contacts_; }
+  [[nodiscard]] const std::vector<CableCableContactData>& cable_cable_contacts() const { return cable_cable_contacts_; }
+  /// Contact pairs are numbered cable–shape pairs first, then cable–cable pairs.
+  [[nodiscard]] Index contact_pair_count() const {
+    return static_cast<Index>(cable_shape_contacts_.size() + cable_cable_contacts_.size());
+  }
+  [[nodiscard]] const std::string& contact_pair_name(Index pair) const;
+
   /// Constant generalised external force (gravity on cables and bodies, dead nodal loads) [N].
   [[nodiscard]] const VecX& constant_load() const { return constant_load_; }
   [[nodiscard]] const VecX& initial_coordinates() const { return q0_; }
@@ -117,6 +127,9 @@ class Model {
   std::vector<ForceElementData<PointForce>> point_forces_;
   std::vector<ForceElementData<BodyTorque>> torques_;
   std::vector<ForceElementData<RevoluteDrive>> drives_;
+  std::vector<ContactShapeData> shapes_;
+  std::vector<CableShapeContactData> cable_shape_contacts_;
+  std::vector<CableCableContactData> cable_cable_contacts_;
   VecX constant_load_;
   VecX q0_, v0_;
   SparsityPattern pattern_;

@@ -15,6 +15,7 @@
 #include "ancf/physics/contact_law.hpp"
 #include "ancf/physics/contact_shapes.hpp"
 #include "ancf/physics/joints.hpp"
+#include "ancf/system/contact_data.hpp"
 #include "ancf/system/model.hpp"
 
 namespace ancf {
@@ -85,13 +86,17 @@ class ModelBuilder {
   Index add_body_shape(std::string name, Index body, const ContactShape& shape);
   /// Candidate contact pair between cable `cable` (its CableSection::radius must be > 0) and the
   /// shape `shape`: `samples_per_element` ≥ 1 points per element at ξ = (k + ½)/N, each weighing
-  /// l/N. The pattern reserves the cable–body blocks of every element, so KLU analyses once.
+  /// l/N, on the elements of `range` (default: all). The pattern reserves the cable–body blocks
+  /// of every candidate element, so KLU analyses once.
   void add_cable_shape_contact(std::string name, Index cable, Index shape, const ContactLaw& law,
-                               int samples_per_element);
+                               int samples_per_element, ElementRange range = {});
   /// Candidate contact pair between two different cables (both radii > 0): samples of cable a
-  /// against the closest point of cable b. Reserves every element-pair block.
+  /// against the closest point of cable b. Reserves every candidate element-pair block
+  /// (2·144·count_a·count_b entries: restrict the ranges where contact can only happen locally).
+  /// Crossing contact is seen through the samples: space them ≲ the radii (docs/contact.md).
   void add_cable_cable_contact(std::string name, Index cable_a, Index cable_b,
-                               const ContactLaw& law, int samples_per_element);
+                               const ContactLaw& law, int samples_per_element,
+                               ElementRange range_a = {}, ElementRange range_b = {});
 
   // --- constraints on cable nodes -------------------------------------------------------------
   /// Node position fixed at `target` [m] (3 rows).
@@ -166,6 +171,9 @@ class ModelBuilder {
   static AffineVector point_expression(const AttachmentPoint& p, const Offsets& o);
   Vec3 point_position(const AttachmentPoint& p) const;
   void add_constraint(std::string name, std::function<ConstraintRows(const Offsets&)> rows);
+  Index add_shape(ContactShapeData shape);
+  /// Contact data of the model (owner coordinates) at finalize() (contact_builder.cpp).
+  void finalize_contacts(const Offsets& o, Model& m) const;
   /// ModelError naming each constraint whose rows are linearly dependent on earlier rows at the
   /// initial configuration (constraint_redundancy.cpp).
   static void check_redundancy(const Model& m);
@@ -179,6 +187,9 @@ class ModelBuilder {
   std::vector<RevoluteInfo> revolutes_;
   std::vector<PendingForce> forces_;
   std::vector<std::pair<NodeRef, Vec3>> node_forces_;
+  std::vector<ContactShapeData> shapes_;
+  std::vector<CableShapeContactData> cable_shape_contacts_;
+  std::vector<CableCableContactData> cable_cable_contacts_;
   Vec3 gravity_ = Vec3::Zero();
 };
 

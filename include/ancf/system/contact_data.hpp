@@ -1,0 +1,60 @@
+// Contact data of a Model (DESIGN §5): named shapes with their owner, and the candidate pairs the
+// scene declared, each with the value slots its blocks occupy in the fixed pattern.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "ancf/core/types.hpp"
+#include "ancf/physics/contact_law.hpp"
+#include "ancf/physics/contact_shapes.hpp"
+
+namespace ancf {
+
+/// A shape and what carries it. Shape data are in the owner's frame (global for ground).
+struct ContactShapeData {
+  enum class Owner { ground, frame, body };
+  std::string name;
+  ContactShape shape;
+  Owner owner = Owner::ground;
+  Index owner_index = -1;       ///< driven-frame or body index (not used for ground)
+  Index body_coordinate = -1;   ///< first coordinate of the owning body (Owner::body)
+};
+
+/// Elements [first, first + count) of a cable that a contact pair samples (count < 0: to the end).
+/// Only these are candidates: the pattern reserves their coupling blocks and nothing else.
+struct ElementRange {
+  Index first = 0;
+  Index count = -1;
+};
+
+/// Slots of a 12×12 coupling block, column-major (slots[12·col + row]).
+using BlockSlots = std::array<Index, 144>;
+
+/// Cable `cable` against shape `shape`: `samples` points per element at ξ = (k + ½)/samples, each
+/// weighing l/samples, on elements [first, first + count). For a body-owned shape, element
+/// first + j couples to the body through element_body[j] (element rows, body columns) and
+/// body_element[j] (the transpose block).
+struct CableShapeContactData {
+  std::string name;
+  Index cable = 0, shape = 0;
+  Index first = 0, count = 0;  ///< candidate elements (resolved range)
+  ContactLaw law;
+  int samples = 1;
+  std::vector<BlockSlots> element_body, body_element;
+};
+
+/// Samples of cable a (elements [first_a, first_a + count_a)) against the closest point of cable b
+/// (elements [first_b, first_b + count_b)). Element pair (first_a + i, first_b + j) couples through
+/// ab[i·count_b + j] (rows of a's element, columns of b's) and ba[i·count_b + j] (transpose).
+struct CableCableContactData {
+  std::string name;
+  Index cable_a = 0, cable_b = 0;
+  Index first_a = 0, count_a = 0, first_b = 0, count_b = 0;  ///< candidate elements
+  ContactLaw law;
+  int samples = 1;
+  std::vector<BlockSlots> ab, ba;
+};
+
+}  // namespace ancf

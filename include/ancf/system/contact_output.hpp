@@ -1,0 +1,45 @@
+// Contact outputs (issue: per pair active flag, minimum gap, force resultants; per cable first
+// contact time). Computed on demand at output times, without the broad phase, so the minimum gap
+// is exact over all samples even for pairs that are far apart.
+#pragma once
+
+#include <limits>
+#include <span>
+#include <vector>
+
+#include "ancf/system/assembly.hpp"
+
+namespace ancf {
+
+struct ContactPairState {
+  bool active = false;       ///< at least one sample penetrates (g < 0)
+  int active_samples = 0;
+  double min_gap = std::numeric_limits<double>::infinity();  ///< min over all samples [m]
+  Vec3 normal_force = Vec3::Zero();    ///< Σ w f_n n on the pair's (first) cable [N]
+  Vec3 friction_force = Vec3::Zero();  ///< Σ w f_t on the pair's (first) cable [N]
+  double peak_sample_force = 0.0;      ///< max over samples of |w f_n| [N]
+};
+
+/// States of every contact pair (model.contact_pair_count() entries, numbered as in Model).
+void contact_states(const Model& model, const SystemState& state, Workspace& ws,
+                    std::span<ContactPairState> out);
+
+/// Records the first time each pair and each cable is in contact, from the states at the times
+/// it is updated with (so the resolution is the caller's step or output interval).
+class ContactMonitor {
+ public:
+  explicit ContactMonitor(const Model& model);
+  /// Evaluate the pair states at `state` and record first-contact times.
+  std::span<const ContactPairState> update(const Model& model, const SystemState& state, Workspace& ws);
+  [[nodiscard]] std::span<const ContactPairState> states() const { return states_; }
+  /// First time the pair / any pair involving the cable was active; NaN if never.
+  [[nodiscard]] double first_contact_of_pair(Index pair) const { return pair_first_[pair]; }
+  [[nodiscard]] double first_contact_of_cable(Index cable) const { return cable_first_[cable]; }
+
+ private:
+  std::vector<ContactPairState> states_;
+  std::vector<double> pair_first_, cable_first_;
+  std::vector<Index> pair_cables_a_, pair_cables_b_;  // −1 for shape pairs
+};
+
+}  // namespace ancf

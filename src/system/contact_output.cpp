@@ -1,0 +1,61 @@
+#include "ancf/system/contact_output.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "contact_sampling.hpp"
+
+namespace ancf {
+namespace {
+
+class StateSink final : public detail::ContactSink {
+ public:
+  explicit StateSink(std::span<ContactPairState> out) : out_(out) {}
+  void add(const ContactSampleResult& s, const detail::ContactSampleBlocks& b) override {
+    ContactPairState& p = out_[b.pair];
+    p.min_gap = std::min(p.min_gap, s.gap);
+    if (!s.active) return;
+    p.active = true;
+    ++p.active_samples;
+    p.normal_force += s.normal_force;
+    p.friction_force += s.friction_force;
+    p.peak_sample_force = std::max(p.peak_sample_force, s.normal_force.norm());
+  }
+
+ private:
+  std::span<ContactPairState> out_;
+};
+
+}  // namespace
+
+void contact_states(const Model& model, const SystemState& state, Workspace& ws,
+                    std::span<ContactPairState> out) {
+  std::fill(out.begin(), out.end(), ContactPairState{});
+  StateSink sink(out);
+  detail::visit_contact_samples(model, state, ws, {.jacobians = false, .all_samples = true}, sink);
+}
+
+ContactMonitor::ContactMonitor(const Model& model)
+    : states_(model.contact_pair_count()),
+      pair_first_(model.contact_pair_count(), std::nan("")),
+      cable_first_(model.cables().size(), std::nan("")) {
+  for (const auto& c : model.cable_shape_contacts()) pair_cables_a_.push_back(c.cable), pair_cables_b_.push_back(-1);
+  for (const auto& c : model.cable_cable_contacts()) pair_cables_a_.push_back(c.cable_a), pair_cables_b_.push_back(c.cable_b);
+}
+
+std::span<const ContactPairState> ContactMonitor::update(const Model& model, const SystemState& state,
+                                                         Workspace& ws) {
+  contact_states(model, state, ws, states_);
+  for (std::size_t p = 0; p < states_.size(); ++p) {
+    if (!states_[p].active) continue;
+    auto record = [&](double& first) {
+      if (std::isnan(first)) first = state.t;
+    };
+    record(pair_first_[p]);
+    record(cable_first_[pair_cables_a_[p]]);
+    if (pair_cables_b_[p] >= 0) record(cable_first_[pair_cables_b_[p]]);
+  }
+  return states_;
+}
+
+}  // namespace ancf

@@ -1,0 +1,187 @@
+#include "contact_sampling.hpp"
+
+#include <limits>
+
+#include "ancf/physics/hermite_shape.hpp"
+
+namespace ancf::detail {
+namespace {
+
+// Pose of a shape's owner at the current state: ground (identity), driven frame (prescribed), or
+// rigid body (read from its natural coordinates; P then includes the body's 12 coordinates).
+ShapeOwnerPose owner_pose(const ContactShapeData& s, const SystemState& state,
+                          std::span<const FrameKinematics> frames) {
+  ShapeOwnerPose pose;
+  switch (s.owner) {
+    case ContactShapeData::Owner::ground:
+      break;
+    case ContactShapeData::Owner::frame: {
+      const FrameKinematics& f = frames[s.owner_index];
+      pose.origin = f.r;
+      pose.origin_velocity = f.r_dot;
+      pose.rotation = f.a;
+      pose.rotation_rate = f.a_dot;
+      break;
+    }
+    case ContactShapeData::Owner::body: {
+      const Index b = s.body_coordinate;
+      pose.origin = state.q.segment<3>(b);
+      pose.origin_velocity = state.v.segment<3>(b);
+      for (int k = 0; k < 3; ++k) {
+        pose.rotation.col(k) = state.q.segment<3>(b + 3 + 3 * k);
+        pose.rotation_rate.col(k) = state.v.segment<3>(b + 3 + 3 * k);
+      }
+      pose.is_body = true;
+      break;
+    }
+  }
+  return pose;
+}
+
+// Broad-phase test of one element box (already inflated by the cable radius) against a shape.
+struct ShapeBroadPhase {
+  const ContactShape& shape;
+  const ShapeOwnerPose& pose;
+  Aabb box;  // global box of a sphere or cylinder
+  ShapeBroadPhase(const ContactShape& s, const ShapeOwnerPose& p) : shape(s), pose(p) {
+    if (const auto* sphere = std::get_if<SphereShape>(&s)) box = shape_bounding_box(*sphere, p.origin, p.rotation);
+    if (const auto* cyl = std::get_if<CappedCylinderShape>(&s)) box = shape_bounding_box(*cyl, p.origin, p.rotation);
+  }
+  [[nodiscard]] bool may_touch(const Aabb& element_box) const {
+    if (const auto* plane = std::get_if<PlaneShape>(&shape))
+      return may_touch_plane(*plane, pose.origin, pose.rotation, element_box);
+    return element_box.overlaps(box);
+  }
+};
+
+// Element boxes of every cable that takes part in a contact pair, and their union per cable.
+void refresh_boxes(const Model& model, const SystemState& state, Workspace& ws) {
+  for (std::size_t c = 0; c < ws.element_boxes.size(); ++c) {
+    auto& boxes = ws.element_boxes[c];
+    if (boxes.empty()) continue;
+    const CableData& cable = model.cables()[c];
+    Aabb all;
+    for (std::size_t j = 0; j < boxes.size(); ++j) {
+      boxes[j] = element_bounding_box(state.q.segment<12>(cable.first_coordinate + 6 * static_cast<Index>(j)),
+                                      cable.elements[j].length);
+      all.extend(boxes[j].lower);
+      all.extend(boxes[j].upper);
+    }
+    ws.cable_boxes[c] = all;
+  }
+}
+
+CableSample sample_of(const CableData& cable, Index element, int k, int samples, const SystemState& state) {
+  CableSample s;
+  const Index base = cable.first_coordinate + 6 * element;
+  s.e = state.q.segment<12>(base);
+  s.e_dot = state.v.segment<12>(base);
+  s.length = cable.elements[element].length;
+  s.xi = (k + 0.5) / samples;
+  s.weight = s.length / samples;
+  s.radius = cable.section.radius;
+  return s;
+}
+
+Aabb inflated(Aabb box, double margin) {
+  box.inflate(margin);
+  return box;
+}
+
+void visit_cable_shape(const Model& model, const SystemState& state, Workspace& ws, ContactVisit how,
+                       Index pair, ContactSink& sink) {
+  const CableShapeContactData& c = model.cable_shape_contacts()[pair];
+  const ContactShapeData& shape = model.shapes()[c.shape];
+  const CableData& cable = model.cables()[c.cable];
+  const ShapeOwnerPose pose = owner_pose(shape, state, ws.frames_at(model, state.t));
+  const ShapeBroadPhase broad(shape.shape, pose);
+  // Whole-cable test first: a pair that cannot touch costs O(1) beyond the box refresh.
+  if (!how.all_samples && !broad.may_touch(inflated(ws.cable_boxes[c.cable], cable.section.radius))) return;
+  ContactSampleBlocks blocks;
+  blocks.pair = pair;
+  blocks.cable = c.cable;
+  const bool body = shape.owner == ContactShapeData::Owner::body;
+  if (body) blocks.first_b = shape.body_coordinate, blocks.bb = &model.body_slots(shape.owner_index);
+  for (Index local = 0; local < c.count; ++local) {
+    const Index j = c.first + local;
+    if (!how.all_samples && !broad.may_touch(inflated(ws.element_boxes[c.cable][j], cable.section.radius))) continue;
+    blocks.first_a = cable.first_coordinate + 6 * j;
+    blocks.aa = &model.element_slots(c.cable, j);
+    if (body) blocks.ab = &c.element_body[local], blocks.ba = &c.body_element[local];
+    for (int k = 0; k < c.samples; ++k) {
+      const CableSample s = sample_of(cable, j, k, c.samples, state);
+      ++ws.narrow_phase_samples;
+      if (evaluate_cable_shape_contact(c.law, shape.shape, pose, s, how.jacobians, ws.contact) || how.all_samples)
+        sink.add(ws.contact, blocks);
+    }
+  }
+}
+
+void visit_cable_cable(const Model& model, const SystemState& state, Workspace& ws, ContactVisit how,
+                       Index pair, ContactSink& sink) {
+  const CableCableContactData& c = model.cable_cable_contacts()[pair];
+  const CableData& a = model.cables()[c.cable_a];
+  const CableData& b = model.cables()[c.cable_b];
+  const double reach = a.section.radius + b.section.radius;
+  const Index nb = c.count_b;
+  if (!how.all_samples && !inflated(ws.cable_boxes[c.cable_a], reach).overlaps(ws.cable_boxes[c.cable_b])) return;
+
+  ContactSampleBlocks blocks;
+  blocks.pair = static_cast<Index>(model.cable_shape_contacts().size()) + pair;
+  blocks.cable = c.cable_a;
+  for (Index li = 0; li < c.count_a; ++li) {
+    const Index i = c.first_a + li;
+    // Candidate elements of b (local indices): those whose box comes within `reach` of element i's.
+    ws.candidates.clear();
+    const Aabb box_i = inflated(ws.element_boxes[c.cable_a][i], reach);
+    if (how.all_samples || box_i.overlaps(ws.cable_boxes[c.cable_b]))
+      for (Index lj = 0; lj < nb; ++lj)
+        if (how.all_samples || box_i.overlaps(ws.element_boxes[c.cable_b][c.first_b + lj])) ws.candidates.push_back(lj);
+    if (ws.candidates.empty()) continue;
+    blocks.first_a = a.first_coordinate + 6 * i;
+    blocks.aa = &model.element_slots(c.cable_a, i);
+    for (int k = 0; k < c.samples; ++k) {
+      const CableSample s = sample_of(a, i, k, c.samples, state);
+      ++ws.narrow_phase_samples;
+      const Vec4 shape = hermite::values(s.xi, s.length);
+      Vec3 x = Vec3::Zero();
+      for (int n = 0; n < 4; ++n) x += shape[n] * s.e.segment<3>(3 * n);
+      // The closest point on cable b is the best projection over the candidates: any element
+      // outside them is farther than `reach` from this sample.
+      ElementProjection best{0.0, std::numeric_limits<double>::infinity()};
+      Index best_local = -1;
+      for (const Index lj : ws.candidates) {
+        const Index j = c.first_b + lj;
+        const ElementProjection p = project_onto_element(state.q.segment<12>(b.first_coordinate + 6 * j),
+                                                         b.elements[j].length, x);
+        if (p.distance < best.distance) best = p, best_local = lj;
+      }
+      if (!how.all_samples && best.distance >= reach) continue;
+      const Index best_j = c.first_b + best_local;
+      const Index eb = b.first_coordinate + 6 * best_j;
+      blocks.first_b = eb;
+      blocks.bb = &model.element_slots(c.cable_b, best_j);
+      blocks.ab = &c.ab[li * nb + best_local];
+      blocks.ba = &c.ba[li * nb + best_local];
+      if (evaluate_cable_cable_contact(c.law, s, state.q.segment<12>(eb), state.v.segment<12>(eb),
+                                       b.elements[best_j].length, b.section.radius, best.xi, how.jacobians,
+                                       ws.contact) ||
+          how.all_samples)
+        sink.add(ws.contact, blocks);
+    }
+  }
+}
+
+}  // namespace
+
+void visit_contact_samples(const Model& model, const SystemState& state, Workspace& ws,
+                           ContactVisit how, ContactSink& sink) {
+  if (model.contact_pair_count() == 0) return;
+  if (!how.all_samples) refresh_boxes(model, state, ws);
+  for (Index p = 0; p < static_cast<Index>(model.cable_shape_contacts().size()); ++p)
+    visit_cable_shape(model, state, ws, how, p, sink);
+  for (Index p = 0; p < static_cast<Index>(model.cable_cable_contacts().size()); ++p)
+    visit_cable_cable(model, state, ws, how, p, sink);
+}
+
+}  // namespace ancf::detail

@@ -1,0 +1,44 @@
+// Internal to the system layer: the broad and narrow phase over every declared contact pair
+// (DESIGN §5). One loop serves the residual, the iteration matrix and the outputs; each passes a
+// ContactSink that consumes the samples.
+#pragma once
+
+#include "ancf/physics/cable_contact.hpp"
+#include "ancf/system/assembly.hpp"
+
+namespace ancf::detail {
+
+/// Where a sample's Q and Jacobian go: the 12 coordinates of the cable element (side a) and the
+/// 12 of the body or cable-b element (side b; first_b = −1 when the other side is ground or a
+/// driven frame), and the value slots of the four 12×12 blocks (column-major; side-b blocks are
+/// nullptr when first_b = −1).
+struct ContactSampleBlocks {
+  Index pair = 0;
+  Index cable = 0;   ///< cable of side a
+  Index first_a = 0, first_b = -1;
+  const BlockSlots* aa = nullptr;
+  const BlockSlots* ab = nullptr;
+  const BlockSlots* ba = nullptr;
+  const BlockSlots* bb = nullptr;
+};
+
+class ContactSink {
+ public:
+  virtual void add(const ContactSampleResult& sample, const ContactSampleBlocks& blocks) = 0;
+
+ protected:
+  ~ContactSink() = default;
+};
+
+struct ContactVisit {
+  bool jacobians = false;  ///< evaluate ∂Q/∂P and ∂Q/∂V
+  /// false: broad phase on, only active samples reach the sink (residual, matrix).
+  /// true: no broad phase, every sample reaches the sink, active or not (outputs: exact min gap).
+  bool all_samples = false;
+};
+
+/// Run the contact detection and kernels of every pair at `state`, feeding `sink`.
+void visit_contact_samples(const Model& model, const SystemState& state, Workspace& ws,
+                           ContactVisit how, ContactSink& sink);
+
+}  // namespace ancf::detail
