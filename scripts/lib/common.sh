@@ -3,7 +3,8 @@
 
 ANCF_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 ANCF_PACKAGES=(g++ cmake make pkg-config libeigen3-dev libfmt-dev libsundials-dev
-               libsuitesparse-dev libgtest-dev libgmock-dev libbenchmark-dev)
+               libsuitesparse-dev libgtest-dev libgmock-dev libbenchmark-dev
+               libtomlplusplus-dev libcli11-dev)
 
 # Install only the Debian packages that are not installed yet (fast when nothing is missing).
 ancf_ensure_packages() {

@@ -1,0 +1,76 @@
+// A scene file (TOML, docs/scenes.md) turned into a finalized Model plus the settings a run needs:
+// integrator, output interval, probes, and the names the file used for its entities.
+//
+// load_scene() validates everything before anything runs: unknown keys at every table level,
+// wrong types, missing required keys, non-physical values, undefined names and redundant
+// constraints all raise SceneError with file, line, key path and what was expected.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "ancf/io/scene_error.hpp"
+#include "ancf/system/model.hpp"
+
+namespace ancf {
+
+enum class IntegratorKind { ida, genalpha };
+
+/// [integrator] of a scene file. IDA uses rtol, the ida_* tolerances and max_step; generalized-α
+/// uses rtol, step, rho_infinity, the formulation and its absolute tolerances.
+struct IntegratorSettings {
+  IntegratorKind kind = IntegratorKind::ida;
+  double t_end = 1.0;  ///< [s] > 0, end of the run (starts at t = 0)
+  double rtol = 1e-6;  ///< relative tolerance (> 0), both integrators
+  /// IDA: absolute tolerances as multiples of the physical scale of each variable class
+  /// (IdaOptions::atol_*); negative: equal to rtol.
+  double ida_atol_position = -1.0, ida_atol_velocity = -1.0, ida_atol_multiplier = -1.0;
+  double max_step = 0.0;           ///< IDA step limit [s]; 0: none
+  int max_order = 5;               ///< IDA BDF order limit, 1 … 5
+  double step = 1e-3;              ///< generalized-α step size h [s] > 0
+  double rho_infinity = 0.8;       ///< generalized-α spectral radius at infinity, [0, 1]
+  bool stabilized_index2 = false;  ///< generalized-α formulation (false: index 3, needs ρ∞ < 1)
+  bool perturbed_start = false;    ///< generalized-α starting procedure (ABC 2015)
+  /// Generalized-α absolute Newton tolerances [m], [m/s], [N].
+  double ga_atol_position = 1e-8, ga_atol_velocity = 1e-6, ga_atol_multiplier = 1e-6;
+};
+
+/// One probe of the output time series (probes.csv columns, docs/scenes.md).
+struct Probe {
+  enum class Kind { node, body, energy, constraint_violation, contact, drive };
+  Kind kind = Kind::energy;
+  std::string label;  ///< column prefix
+  Index target = -1;  ///< cable (node), body, contact pair or drive index; unused otherwise
+  Index node = 0;     ///< node index (≥ 0, resolved) for Kind::node
+};
+
+struct OutputSettings {
+  double interval = 0.01;           ///< [s] > 0 between output frames (probes and VTK)
+  bool vtk = true;                  ///< write .vtp frames and a .pvd series
+  int vtk_samples_per_element = 4;  ///< polyline points per cable element (≥ 1)
+  std::vector<Probe> probes;
+};
+
+/// Names used in the scene file → indices in the Model.
+struct SceneNames {
+  std::map<std::string, Index> cables, bodies, frames, shapes, contacts, drives;
+};
+
+struct Scene {
+  std::string path;  ///< the file as given to load_scene
+  std::string name;  ///< [scene] name (default: file stem)
+  Model model;
+  IntegratorSettings integrator;
+  OutputSettings output;
+  SceneNames names;
+};
+
+/// Parse, validate and build the scene in `path`. Throws SceneError (any problem with the file or
+/// the model it describes).
+[[nodiscard]] Scene load_scene(const std::string& path);
+
+/// Same from text already in memory; `path` is used in messages and as Scene::path.
+[[nodiscard]] Scene load_scene_from_string(const std::string& text, const std::string& path);
+
+}  // namespace ancf

@@ -1,0 +1,28 @@
+// Subcommands of the `ancf` executable. Each returns the process exit status and prints its own
+// errors (scene errors on stderr, exit 1).
+#pragma once
+
+#include <string>
+
+namespace ancf::app {
+
+/// `ancf check SCENE`: parse, validate and finalize; prints "OK" or the located error.
+int check_command(const std::string& scene_path);
+/// `ancf info SCENE`: unknowns, constraints, multipliers, pattern nonzeros, contact pairs.
+int info_command(const std::string& scene_path);
+
+/// Command-line overrides of the scene's [integrator] and [output] for `ancf run`.
+struct RunOptions {
+  std::string scene_path;
+  std::string integrator;  ///< "" (scene's), "ida" or "genalpha"
+  double rtol = 0.0;       ///< 0: scene's
+  double step = 0.0;       ///< 0: scene's (genalpha step; IDA max step)
+  double t_end = 0.0;      ///< 0: scene's
+  std::string out_dir = "out";
+  bool progress = false;  ///< force the progress bar even when stderr is not a terminal
+  bool quiet = false;     ///< no summary table
+};
+/// `ancf run SCENE …`: integrate and write probes.csv, VTK frames, run.json into out_dir.
+int run_command(const RunOptions& options);
+
+}  // namespace ancf::app

@@ -1,0 +1,74 @@
+// `ancf check` and `ancf info`: everything short of running a scene.
+#include <fmt/format.h>
+
+#include <cstdio>
+
+#include "ancf/io/scene.hpp"
+#include "commands.hpp"
+
+namespace ancf::app {
+
+int check_command(const std::string& scene_path) {
+  try {
+    const Scene scene = load_scene(scene_path);
+    fmt::print("OK {}: {} unknowns, {} constraint rows\n", scene_path,
+               scene.model.coordinate_count(), scene.model.multiplier_count());
+    return 0;
+  } catch (const ModelError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 1;
+  }
+}
+
+int info_command(const std::string& scene_path) {
+  try {
+    const Scene scene = load_scene(scene_path);
+    const Model& m = scene.model;
+    fmt::print("scene        {} ({})\n", scene.name, scene.path);
+    fmt::print("coordinates  {}\n", m.coordinate_count());
+    fmt::print("multipliers  {} (constraint rows)\n", m.multiplier_count());
+    fmt::print("system size  {} (IDA/GGL: {})\n", m.system_size(),
+               2 * m.coordinate_count() + 2 * m.multiplier_count());
+    fmt::print("nonzeros     {} in the iteration-matrix pattern\n", m.pattern().nonzeros());
+    fmt::print("cables       {}\n", m.cables().size());
+    for (const CableData& c : m.cables())
+      fmt::print(
+          "  {:<18} {:>4} elements {:>4} nodes  EA {:.4g} N  EI {:.4g} N m^2  rhoA {:.4g} kg/m\n",
+          c.name, c.elements.size(), c.node_count, c.section.axial_stiffness,
+          c.section.bending_stiffness, c.section.mass_per_length);
+    fmt::print("bodies       {}\n", m.bodies().size());
+    for (const BodyData& b : m.bodies())
+      fmt::print("  {:<18} mass {:.4g} kg\n", b.name, b.inertia.mass);
+    fmt::print("frames       {}\n", m.frames().size());
+    fmt::print("constraints  {}\n", m.constraints().size());
+    for (const ConstraintData& c : m.constraints())
+      fmt::print("  {:<30} {} rows\n", c.name, c.row_count);
+    fmt::print("forces       {} spring-dampers, {} point forces, {} torques, {} drives\n",
+               m.spring_dampers().size(), m.point_forces().size(), m.body_torques().size(),
+               m.drives().size());
+    fmt::print("contact      {} pairs, {} shapes\n", m.contact_pair_count(), m.shapes().size());
+    for (const CableShapeContactData& p : m.cable_shape_contacts())
+      fmt::print("  {:<18} cable '{}' - shape '{}', elements {}..{}, {} samples/element\n", p.name,
+                 m.cables()[p.cable].name, m.shapes()[p.shape].name, p.first, p.first + p.count - 1,
+                 p.samples);
+    for (const CableCableContactData& p : m.cable_cable_contacts())
+      fmt::print("  {:<18} cable '{}' - cable '{}', {} x {} elements, {} samples/element\n", p.name,
+                 m.cables()[p.cable_a].name, m.cables()[p.cable_b].name, p.count_a, p.count_b,
+                 p.samples);
+    const IntegratorSettings& s = scene.integrator;
+    if (s.kind == IntegratorKind::ida)
+      fmt::print("integrator   ida, rtol {:g}, t_end {:g} s\n", s.rtol, s.t_end);
+    else
+      fmt::print("integrator   genalpha ({}), h {:g} s, rho_inf {:g}, t_end {:g} s\n",
+                 s.stabilized_index2 ? "stabilized index 2" : "index 3", s.step, s.rho_infinity,
+                 s.t_end);
+    fmt::print("output       every {:g} s, {} probes, vtk {}\n", scene.output.interval,
+               scene.output.probes.size(), scene.output.vtk ? "on" : "off");
+    return 0;
+  } catch (const ModelError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 1;
+  }
+}
+
+}  // namespace ancf::app

@@ -1,0 +1,186 @@
+// [[cable]]: geometry (straight, polyline, helix, arc), optional stress-free reference, section.
+#include <cmath>
+#include <numbers>
+
+#include <Eigen/Geometry>
+
+#include "scene_parts.hpp"
+
+namespace ancf::io {
+
+namespace {
+
+/// Nodes through the points of a polyline; `elements` (≥ segments) are shared among the segments
+/// in proportion to their length. A corner node's slope is the bisector of the adjacent unit
+/// tangents, so the reference is the smooth Hermite curve through the points (docs/scenes.md).
+CableGeometry polyline_cable(TableReader& g, const std::vector<Vec3>& p, Index elements) {
+  const std::size_t segments = p.size() - 1;
+  if (static_cast<std::size_t>(elements) < segments)
+    g.fail("points", "a polyline of " + std::to_string(segments) +
+                         " segments needs elements >= " + std::to_string(segments));
+  std::vector<double> length(segments);
+  double total = 0.0;
+  for (std::size_t s = 0; s < segments; ++s) {
+    length[s] = (p[s + 1] - p[s]).norm();
+    if (!(length[s] > 0.0))
+      g.fail("points", "points " + std::to_string(s) + " and " + std::to_string(s + 1) +
+                           " coincide (zero-length segment)");
+    total += length[s];
+  }
+  // One element per segment, then the rest by largest remaining length per element.
+  std::vector<Index> count(segments, 1);
+  for (Index extra = elements - static_cast<Index>(segments); extra > 0; --extra) {
+    std::size_t best = 0;
+    for (std::size_t s = 1; s < segments; ++s)
+      if (length[s] / count[s] > length[best] / count[best]) best = s;
+    ++count[best];
+  }
+  CableGeometry geo;
+  auto tangent = [&](std::size_t s) -> Vec3 { return (p[s + 1] - p[s]) / length[s]; };
+  for (std::size_t s = 0; s < segments; ++s) {
+    const Vec3 t = tangent(s);
+    for (Index k = 0; k < count[s]; ++k) {
+      NodeCoordinates node;
+      Vec3 slope = t;
+      if (k == 0 && s > 0) {
+        const Vec3 bisector = tangent(s - 1) + t;
+        if (!(bisector.norm() > 1e-12))
+          g.fail("points", "the polyline turns back on itself at point " + std::to_string(s));
+        slope = bisector.normalized();
+      }
+      node << p[s] + (static_cast<double>(k) / count[s]) * (p[s + 1] - p[s]), slope;
+      geo.nodes.push_back(node);
+      geo.element_lengths.push_back(length[s] / count[s]);
+    }
+  }
+  NodeCoordinates last;
+  last << p.back(), tangent(segments - 1);
+  geo.nodes.push_back(last);
+  return geo;
+}
+
+void require_perpendicular(TableReader& g, std::string_view key, const Vec3& a, const Vec3& b,
+                           const char* other) {
+  if (std::abs(a.dot(b)) > 1e-9)
+    g.fail(key, std::string("expected a direction perpendicular to ") + other);
+}
+
+CableGeometry read_geometry(TableReader g, Index elements) {
+  const std::string kind = g.choice("kind", {"straight", "polyline", "helix", "arc"});
+  CableGeometry geo;
+  if (kind == "straight") {
+    const Vec3 a = g.vec3("start"), b = g.vec3("end");
+    if (!((b - a).norm() > 0.0))
+      g.fail("end", "expected an end point different from start (zero length)");
+    geo = straight_cable(a, b, elements);
+  } else if (kind == "polyline") {
+    geo = polyline_cable(g, g.vec3_list("points", 2), elements);
+  } else if (kind == "helix") {
+    const Vec3 base = g.vec3_or("base", Vec3::Zero());
+    const Vec3 axis = g.optional_direction("axis").value_or(Vec3::UnitZ());
+    const Vec3 u = g.optional_direction("u").value_or(
+        std::abs(axis.x()) < 0.9 ? axis.cross(Vec3::UnitX()).cross(axis).normalized()
+                                 : axis.cross(Vec3::UnitY()).cross(axis).normalized());
+    require_perpendicular(g, "u", u, axis, "axis");
+    const double radius = g.number("radius", Range::positive);
+    const double phi0 = g.number_or("phi0", 0.0), twist = g.number("twist"),
+                 rise = g.number("rise");
+    if (!(std::hypot(radius * twist, rise) > 0.0))
+      g.fail("twist", "expected twist or rise non-zero (zero length)");
+    geo = helix_cable(base, axis, u, radius, phi0, twist, rise, elements);
+  } else {
+    const Vec3 centre = g.vec3_or("centre", Vec3::Zero());
+    const Vec3 u = g.direction("u"), w = g.direction("w");
+    require_perpendicular(g, "w", w, u, "u");
+    const double radius = g.number("radius", Range::positive), angle = g.number("angle");
+    if (angle == 0.0) g.fail("angle", "expected a non-zero angle [rad] (zero length)");
+    geo = arc_cable(centre, u, w, radius, angle, elements);
+  }
+  g.finish();
+  return geo;
+}
+
+CableSection read_section(TableReader s) {
+  CableSection c;
+  c.strain = s.choice("strain", {"green", "elastic_line"}, "green") == "green"
+                 ? StrainMeasure::green_lagrange
+                 : StrainMeasure::elastic_line;
+  const auto ea = s.optional_number("EA", Range::positive);
+  const auto e = s.optional_number("E", Range::positive);
+  const auto d = s.optional_number("diameter", Range::positive);
+  const double area = d ? std::numbers::pi * *d * *d / 4.0 : 0.0;
+  if (ea && e) s.fail("E", "give either EA or E (with diameter), not both");
+  if (ea) {
+    c.axial_stiffness = *ea;
+  } else if (e) {
+    if (!d) s.fail("E", "E needs the diameter (A = π d²/4), or give EA instead");
+    c.axial_stiffness = *e * area;
+  } else {
+    s.fail_here("missing required key 'EA' (or 'E' with 'diameter') [N]");
+  }
+  const auto rho_a = s.optional_number("mass_per_length", Range::positive);
+  const auto rho = s.optional_number("density", Range::positive);
+  if (rho_a && rho) s.fail("density", "give either mass_per_length or density, not both");
+  if (rho_a) {
+    c.mass_per_length = *rho_a;
+  } else if (rho) {
+    if (!d) s.fail("density", "density needs the diameter, or give mass_per_length instead");
+    c.mass_per_length = *rho * area;
+  } else {
+    s.fail_here("missing required key 'mass_per_length' (or 'density' with 'diameter') [kg/m]");
+  }
+  const bool bending = s.boolean_or("bending", true);
+  const auto ei = s.optional_number("EI", Range::non_negative);
+  if (bending) {
+    if (ei) {
+      c.bending_stiffness = *ei;
+    } else if (e && d) {
+      c.bending_stiffness = *e * std::numbers::pi * std::pow(*d, 4) / 64.0;
+    } else {
+      s.fail_here(
+          "bending = true needs 'EI' [N m²], or 'E' with 'diameter' "
+          "(set bending = false for the paper's pure cable)");
+    }
+  } else if (ei && *ei > 0.0) {
+    s.fail("EI", "EI > 0 given with bending = false");
+  }
+  c.prestrain = s.number_or("prestrain", 0.0);
+  if (c.prestrain <= -1.0) s.fail("prestrain", "expected a prestrain > -1");
+  c.axial_damping = s.number_or("axial_damping", 0.0, Range::non_negative);
+  c.bending_damping = s.number_or("bending_damping", 0.0, Range::non_negative);
+  if (!bending && c.bending_damping > 0.0)
+    s.fail("bending_damping", "bending damping given with bending = false");
+  c.radius = s.number_or("radius", d ? *d / 2.0 : 0.0, Range::non_negative);
+  s.finish();
+  return c;
+}
+
+}  // namespace
+
+void read_cables(TableReader& root, SceneBuild& b) {
+  for (TableReader& t : root.tables("cable")) {
+    const std::string name = t.string("name");
+    if (b.names.cables.count(name)) t.fail("name", "the cable name '" + name + "' is used twice");
+    const Index elements = t.integer("elements", 1);
+    const CableGeometry initial = read_geometry(t.table("geometry"), elements);
+    const CableGeometry reference =
+        t.has("reference") ? read_geometry(t.table("reference"), elements) : initial;
+    const CableSection section = read_section(t.table("section"));
+    const auto velocity = t.optional_vec3("velocity");
+    t.finish();
+    b.build(t, [&] {
+      const Index c = b.builder.add_cable(name, reference, section);
+      if (t.has("reference") || velocity) {
+        std::vector<NodeCoordinates> v(initial.nodes.size(), NodeCoordinates::Zero());
+        for (auto& n : v) n.head<3>() = velocity.value_or(Vec3::Zero());
+        b.builder.set_initial_configuration(c, initial, &v);
+      }
+      b.names.cables[name] = c;
+      b.cable_initial.push_back(initial);
+      b.cable_radius.push_back(section.radius);
+      b.cable_names.push_back(name);
+    });
+  }
+}
+
+}  // namespace ancf::io

@@ -1,0 +1,82 @@
+// load_scene: parse the TOML text, read every section into a ModelBuilder, finalize, and turn any
+// problem into a located SceneError before anything can run.
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "scene_parts.hpp"
+
+namespace ancf {
+
+namespace {
+
+/// The constraint a redundancy report names first ("constraint 'NAME' row …"), or "".
+std::string first_named_constraint(const std::string& message) {
+  const std::string tag = "constraint '";
+  const auto a = message.find(tag);
+  if (a == std::string::npos) return {};
+  const auto b = message.find('\'', a + tag.size());
+  return b == std::string::npos ? std::string()
+                                : message.substr(a + tag.size(), b - a - tag.size());
+}
+
+Scene build_scene(const toml::table& root_table, const std::string& path) {
+  io::SceneBuild b(path);
+  io::TableReader root(path, root_table, "");
+  Scene scene;
+  scene.path = path;
+  scene.name = std::filesystem::path(path).stem().string();
+  if (auto meta = root.optional_table("scene")) {
+    scene.name = meta->string_or("name", scene.name);
+    (void)meta->optional_string("description");
+    if (auto g = meta->optional_vec3("gravity")) b.builder.set_gravity(*g);
+    meta->finish();
+  }
+  io::read_cables(root, b);
+  io::read_bodies(root, b);
+  io::read_frames(root, b);
+  io::read_shapes(root, b);
+  io::read_joints(root, b);
+  io::read_drives(root, b);
+  io::read_loads(root, b);
+  io::read_contacts(root, b);
+  scene.integrator = io::read_integrator(root);
+  scene.output = io::read_output(root, b);
+  root.finish();
+  try {
+    scene.model = b.builder.finalize();
+  } catch (const ModelError& e) {
+    // Point at the declaration of the first constraint the builder names (redundancy report).
+    const std::string name = first_named_constraint(e.what());
+    const auto it = b.origins.find(name);
+    if (it != b.origins.end())
+      throw SceneError(path, it->second.line, 0, it->second.path, e.what());
+    throw SceneError(path, 0, 0, "", e.what());
+  }
+  scene.names = std::move(b.names);
+  return scene;
+}
+
+}  // namespace
+
+Scene load_scene_from_string(const std::string& text, const std::string& path) {
+  toml::table root;
+  try {
+    root = toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    throw SceneError(path, static_cast<int>(e.source().begin.line),
+                     static_cast<int>(e.source().begin.column), "",
+                     "TOML syntax error: " + std::string(e.description()));
+  }
+  return build_scene(root, path);
+}
+
+Scene load_scene(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError(path, 0, 0, "", "cannot open the scene file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return load_scene_from_string(text.str(), path);
+}
+
+}  // namespace ancf

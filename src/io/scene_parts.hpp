@@ -1,0 +1,76 @@
+// Internal to the scene loader: the state shared by the readers of each section of a scene file
+// (builder, names seen so far, where each constraint was declared) and the section readers.
+#pragma once
+
+#include <map>
+#include <string>
+
+#include "ancf/io/scene.hpp"
+#include "ancf/physics/angle_law.hpp"
+#include "ancf/system/model_builder.hpp"
+#include "toml_reader.hpp"
+
+namespace ancf::io {
+
+struct SceneBuild {
+  explicit SceneBuild(const std::string& f) : file(f) {}
+  const std::string& file;
+  ModelBuilder builder;
+  SceneNames names;
+  std::vector<CableGeometry> cable_initial;  // initial configuration per cable (defaults of pins)
+  std::vector<double> cable_radius;          // section radius per cable [m]
+  std::vector<std::string> cable_names;
+  /// Where each named constraint / force / pair was declared (key path and line), so that
+  /// errors found later (redundancy at finalize) point back into the file.
+  struct Origin {
+    std::string path;
+    int line = 0;
+  };
+  std::map<std::string, Origin> origins;
+  std::map<std::string, std::string> revolute_joints;  // name → path (drives refer to them)
+
+  /// Record `name` (constraint, force element, contact pair or drive) as declared by `t`; fails
+  /// if the name is already used by another of them.
+  void declare(TableReader& t, std::string_view key, const std::string& name);
+
+  /// Run a builder call; a ModelError it throws becomes a SceneError at table `t`.
+  template <class F>
+  void build(const TableReader& t, F&& f) {
+    try {
+      f();
+    } catch (const SceneError&) {
+      throw;
+    } catch (const ModelError& e) {
+      t.fail_here(e.what());
+    }
+  }
+
+  Index cable(TableReader& t, std::string_view key);
+  Index body(TableReader& t, std::string_view key);
+  int frame(TableReader& t, std::string_view key);
+  /// Inline table { cable = "name", node = k } (k < 0 counts from the end), validated.
+  NodeRef node(TableReader& t, std::string_view key);
+  /// { cable, node } | { body, point } | { frame, point } | { ground = [x, y, z] }.
+  AttachmentPoint attachment(TableReader& t, std::string_view key);
+  /// "ground" → −1, otherwise a body index.
+  Index body_or_ground(TableReader& t, std::string_view key);
+};
+
+/// A rotation: { axis = [..], angle = rad } or a 3×3 matrix given by rows (orthonormal, det +1).
+Mat3 read_rotation(TableReader& t, std::string_view key);
+/// { kind = "fixed" | "constant_rate" | "smooth_ramp", angle0, rate, max_rate, ramp_time }.
+AngleLaw read_angle_law(TableReader& t, std::string_view key);
+
+void read_cables(TableReader& root, SceneBuild& b);
+void read_bodies(TableReader& root, SceneBuild& b);
+void read_frames(TableReader& root, SceneBuild& b);
+void read_joints(TableReader& root, SceneBuild& b);
+void read_drives(TableReader& root, SceneBuild& b);
+void read_loads(TableReader& root, SceneBuild& b);
+void read_shapes(TableReader& root, SceneBuild& b);
+void read_contacts(TableReader& root, SceneBuild& b);
+IntegratorSettings read_integrator(TableReader& root);
+/// Needs the finalized model to resolve probe targets' node indices.
+OutputSettings read_output(TableReader& root, SceneBuild& b);
+
+}  // namespace ancf::io

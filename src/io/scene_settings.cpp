@@ -1,0 +1,98 @@
+// [integrator] and [output] (with its [[output.probe]] entries).
+#include "scene_parts.hpp"
+
+namespace ancf::io {
+
+IntegratorSettings read_integrator(TableReader& root) {
+  IntegratorSettings s;
+  auto table = root.optional_table("integrator");
+  if (!table) return s;
+  TableReader& t = *table;
+  s.kind = t.choice("method", {"ida", "genalpha"}, "ida") == "ida" ? IntegratorKind::ida
+                                                                   : IntegratorKind::genalpha;
+  s.t_end = t.number_or("t_end", s.t_end, Range::positive);
+  s.rtol = t.number_or("rtol", s.rtol, Range::positive);
+  if (auto ida = t.optional_table("ida")) {
+    s.ida_atol_position = ida->number_or("atol_position", s.ida_atol_position, Range::positive);
+    s.ida_atol_velocity = ida->number_or("atol_velocity", s.ida_atol_velocity, Range::positive);
+    s.ida_atol_multiplier =
+        ida->number_or("atol_multiplier", s.ida_atol_multiplier, Range::positive);
+    s.max_step = ida->number_or("max_step", s.max_step, Range::non_negative);
+    s.max_order = static_cast<int>(ida->integer_or("max_order", s.max_order, 1));
+    if (s.max_order > 5) ida->fail("max_order", "expected a BDF order 1 … 5");
+    ida->finish();
+  }
+  if (auto ga = t.optional_table("genalpha")) {
+    s.step = ga->number_or("step", s.step, Range::positive);
+    s.rho_infinity = ga->number_or("rho_infinity", s.rho_infinity, Range::unit_interval);
+    s.stabilized_index2 =
+        ga->choice("formulation", {"index3", "stabilized_index2"}, "index3") == "stabilized_index2";
+    s.perturbed_start =
+        ga->choice("start", {"consistent", "perturbed"}, "consistent") == "perturbed";
+    s.ga_atol_position = ga->number_or("atol_position", s.ga_atol_position, Range::positive);
+    s.ga_atol_velocity = ga->number_or("atol_velocity", s.ga_atol_velocity, Range::positive);
+    s.ga_atol_multiplier = ga->number_or("atol_multiplier", s.ga_atol_multiplier, Range::positive);
+    if (!s.stabilized_index2 && s.rho_infinity >= 1.0)
+      ga->fail("rho_infinity",
+               "index 3 with rho_infinity = 1 is unstable: use rho_infinity < 1 or "
+               "formulation = \"stabilized_index2\"");
+    ga->finish();
+  }
+  if (s.step > s.t_end) t.fail("t_end", "expected t_end >= the generalized-alpha step");
+  t.finish();
+  return s;
+}
+
+OutputSettings read_output(TableReader& root, SceneBuild& b) {
+  OutputSettings s;
+  auto table = root.optional_table("output");
+  if (!table) return s;
+  TableReader& t = *table;
+  s.interval = t.number_or("interval", s.interval, Range::positive);
+  s.vtk = t.boolean_or("vtk", s.vtk);
+  s.vtk_samples_per_element = static_cast<int>(t.integer_or("vtk_samples_per_element", 4, 1));
+  auto lookup = [&](TableReader& p, std::string_view key, const std::map<std::string, Index>& m,
+                    const char* what) {
+    const std::string name = p.string(key);
+    auto it = m.find(name);
+    if (it == m.end()) p.fail(key, std::string("no ") + what + " named '" + name + "'");
+    return std::pair<std::string, Index>(name, it->second);
+  };
+  for (TableReader& p : t.tables("probe")) {
+    Probe probe;
+    const std::string kind =
+        p.choice("kind", {"node", "body", "energy", "constraint_violation", "contact", "drive"});
+    std::string label = kind;
+    if (kind == "node") {
+      probe.kind = Probe::Kind::node;
+      const NodeRef n = b.node(p, "at");
+      probe.target = n.cable;
+      probe.node = n.node;
+      label = b.cable_names[n.cable] + "[" + std::to_string(n.node) + "]";
+    } else if (kind == "body") {
+      probe.kind = Probe::Kind::body;
+      std::tie(label, probe.target) = lookup(p, "body", b.names.bodies, "body");
+    } else if (kind == "energy") {
+      probe.kind = Probe::Kind::energy;
+    } else if (kind == "constraint_violation") {
+      probe.kind = Probe::Kind::constraint_violation;
+      label = "violation";
+    } else if (kind == "contact") {
+      probe.kind = Probe::Kind::contact;
+      std::tie(label, probe.target) = lookup(p, "pair", b.names.contacts, "contact pair");
+    } else {
+      probe.kind = Probe::Kind::drive;
+      std::tie(label, probe.target) = lookup(p, "drive", b.names.drives, "drive");
+    }
+    probe.label = p.string_or("label", label);
+    for (const Probe& q : s.probes)
+      if (q.label == probe.label)
+        p.fail("label", "two probes with the label '" + probe.label + "' (set label = \"...\")");
+    p.finish();
+    s.probes.push_back(probe);
+  }
+  t.finish();
+  return s;
+}
+
+}  // namespace ancf::io

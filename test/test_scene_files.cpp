@@ -1,0 +1,142 @@
+// Scene files: every malformed scene under test/scenes/malformed fails with its expected message
+// (file, line, fragment given in its "# expect:" and "# line:" comments); valid scenes build the
+// model they describe; every scene under studies/scenes loads.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <string>
+
+#include "ancf/io/scene.hpp"
+#include "ancf/scenes/pendulums.hpp"
+
+namespace fs = std::filesystem;
+using namespace ancf;
+
+namespace {
+
+const fs::path kSource = ANCF_SOURCE_DIR;
+
+std::vector<fs::path> scenes_in(const fs::path& dir) {
+  std::vector<fs::path> out;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().extension() == ".toml") out.push_back(e.path());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+/// Value of the first comment line "# KEY: value" of a file.
+std::string directive(const fs::path& file, const std::string& key) {
+  std::ifstream in(file);
+  const std::string tag = "# " + key + ": ";
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind(tag, 0) == 0) return line.substr(tag.size());
+  return {};
+}
+
+}  // namespace
+
+TEST(SceneFiles, MalformedCorpusHasAtLeastTwentyFiles) {
+  EXPECT_GE(scenes_in(kSource / "test/scenes/malformed").size(), 20u);
+}
+
+TEST(SceneFiles, EachMalformedSceneGivesItsLocatedMessage) {
+  for (const fs::path& file : scenes_in(kSource / "test/scenes/malformed")) {
+    SCOPED_TRACE(file.filename().string());
+    const std::string expect = directive(file, "expect"), line = directive(file, "line");
+    ASSERT_FALSE(expect.empty()) << "no '# expect:' comment";
+    ASSERT_FALSE(line.empty()) << "no '# line:' comment";
+    try {
+      (void)load_scene(file.string());
+      ADD_FAILURE() << "loaded without error";
+    } catch (const SceneError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find(file.string() + ":" + line + ":"), std::string::npos) << what;
+      EXPECT_EQ(std::to_string(e.line()), line) << what;
+      EXPECT_NE(what.find(expect), std::string::npos) << what;
+    }
+  }
+}
+
+TEST(SceneFiles, MissingFileIsASceneError) {
+  EXPECT_THROW((void)load_scene("/nonexistent/scene.toml"), SceneError);
+}
+
+TEST(SceneFiles, PendulumSceneMatchesTheReferenceScene) {
+  const Scene s = load_scene((kSource / "studies/scenes/cable_pendulum.toml").string());
+  const Model reference = cable_pendulum_model(benchmark_cable_pendulum(20));
+  const Model& m = s.model;
+  ASSERT_EQ(m.cables().size(), 1u);
+  EXPECT_EQ(m.coordinate_count(), reference.coordinate_count());
+  EXPECT_EQ(m.multiplier_count(), reference.multiplier_count());
+  EXPECT_EQ(m.pattern().nonzeros(), reference.pattern().nonzeros());
+  const CableSection& a = m.cables()[0].section;
+  const CableSection& b = reference.cables()[0].section;
+  // E·πd²/4 etc.: the same formulas, so equal to round-off.
+  EXPECT_NEAR(a.axial_stiffness, b.axial_stiffness, 1e-12 * b.axial_stiffness);
+  EXPECT_NEAR(a.bending_stiffness, b.bending_stiffness, 1e-12 * b.bending_stiffness);
+  EXPECT_NEAR(a.mass_per_length, b.mass_per_length, 1e-12 * b.mass_per_length);
+  EXPECT_NEAR(a.radius, 0.005, 1e-15);
+  EXPECT_EQ((m.constant_load() - reference.constant_load()).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ(s.integrator.kind, IntegratorKind::ida);
+  ASSERT_EQ(s.output.probes.size(), 3u);
+  EXPECT_EQ(s.output.probes[0].label, "tip");
+  EXPECT_EQ(s.output.probes[0].node, 20);
+}
+
+TEST(SceneFiles, MechanismSceneBuildsEveryComponent) {
+  const Scene s = load_scene((kSource / "test/scenes/valid/mechanism.toml").string());
+  const Model& m = s.model;
+  // Nodes 7 + 5 + 6 (polyline: 5 elements over 2 equal segments → 3 + 2), two bodies.
+  EXPECT_EQ(m.coordinate_count(), 6 * 18 + 2 * 12);
+  // 2×6 orthonormality, spherical 3, revolute 5, pins 3 + 3, frame attach 3, body attach 3 + 2,
+  // clamp 3 + 2.
+  EXPECT_EQ(m.multiplier_count(), 39);
+  EXPECT_EQ(m.constraints().size(), 11u);
+  EXPECT_GE(m.find_constraint("rotor_end.slope"), 0);
+  EXPECT_GE(m.find_constraint("poly_end.slope"), 0);
+  EXPECT_EQ(m.frames().size(), 1u);
+  EXPECT_EQ(m.drives().size(), 1u);
+  EXPECT_EQ(m.spring_dampers().size(), 1u);
+  EXPECT_EQ(m.body_torques().size(), 1u);
+  EXPECT_EQ(m.shapes().size(), 2u);
+  EXPECT_EQ(m.contact_pair_count(), 3);
+  EXPECT_EQ(s.names.contacts.at("helix_arc"), 2);  // cable–cable pairs are numbered last
+  EXPECT_EQ(m.contact_pair_name(s.names.contacts.at("helix_knob")), "helix_knob");
+  const CableShapeContactData& knob = m.cable_shape_contacts()[1];
+  EXPECT_EQ(knob.first, 3);
+  EXPECT_EQ(knob.count, 3);
+  EXPECT_EQ(knob.samples, 4);
+  EXPECT_DOUBLE_EQ(m.cable_shape_contacts()[0].law.friction, 0.05);
+  // Helix rope: EA = E πd²/4 with d = 2 mm, ρA = 7800 πd²/4, no bending.
+  const CableSection& helix = m.cables()[0].section;
+  EXPECT_NEAR(helix.axial_stiffness, 1e11 * std::numbers::pi * 1e-6, 1e-6);
+  EXPECT_EQ(helix.bending_stiffness, 0.0);
+  EXPECT_NEAR(helix.radius, 0.001, 1e-15);
+  // Arc rope starts curved over a straight reference of length 0.3 m: its nodes sit on the arc.
+  const Index last = m.node_coordinate(1, -1);
+  const Vec3 tip(m.initial_coordinates()[last], m.initial_coordinates()[last + 1],
+                 m.initial_coordinates()[last + 2]);
+  EXPECT_NEAR((tip - Vec3(0.3 * std::cos(1.0), 0.3 * std::sin(1.0), -1.0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(m.cables()[1].elements[0].length, 0.3 / 4, 1e-15);
+  EXPECT_EQ(m.cables()[1].section.strain, StrainMeasure::elastic_line);
+  // Polyline: the corner node (index 3) has the bisector slope.
+  const Index corner = m.node_coordinate(2, 3);
+  EXPECT_NEAR(m.initial_coordinates()[corner + 3], std::sqrt(0.5), 1e-12);
+  EXPECT_NEAR(m.initial_coordinates()[corner + 4], std::sqrt(0.5), 1e-12);
+  EXPECT_EQ(s.integrator.kind, IntegratorKind::genalpha);
+  EXPECT_TRUE(s.integrator.stabilized_index2);
+  ASSERT_EQ(s.output.probes.size(), 4u);
+  EXPECT_EQ(s.output.probes[2].label, "knob");
+  EXPECT_EQ(s.output.probes[3].node, 5);
+}
+
+TEST(SceneFiles, EveryStudySceneLoads) {
+  const auto files = scenes_in(kSource / "studies/scenes");
+  EXPECT_FALSE(files.empty());
+  for (const fs::path& file : files) {
+    SCOPED_TRACE(file.string());
+    EXPECT_NO_THROW((void)load_scene(file.string()));
+  }
+}
