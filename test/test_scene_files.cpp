@@ -140,3 +140,22 @@ TEST(SceneFiles, EveryStudySceneLoads) {
     EXPECT_NO_THROW((void)load_scene(file.string()));
   }
 }
+
+TEST(SceneFiles, DocumentedExampleLoads) {
+  // The "Complete example" of docs/scenes.md must stay a valid scene.
+  std::ifstream in(kSource / "docs/scenes.md");
+  std::string text, line;
+  bool inside = false;
+  while (std::getline(in, line)) {
+    if (line == "```toml")
+      inside = true;
+    else if (inside && line == "```")
+      break;
+    else if (inside)
+      text += line + "\n";
+  }
+  ASSERT_FALSE(text.empty());
+  const Scene s = load_scene_from_string(text, "docs/scenes.md");
+  EXPECT_EQ(s.model.contact_pair_count(), 1);
+  EXPECT_EQ(s.model.drives().size(), 1u);
+}
