@@ -14,8 +14,22 @@ int main(int argc, char** argv) {
       app.add_subcommand("info", "print unknowns, constraints, nonzeros, contact pairs");
   info->add_option("SCENE", scene, "scene file (TOML)")->required();
 
+  ancf::app::RunOptions run_options;
+  CLI::App* run = app.add_subcommand("run", "integrate a scene and write its outputs");
+  run->add_option("SCENE", run_options.scene_path, "scene file (TOML)")->required();
+  run->add_option("--integrator", run_options.integrator, "override [integrator] method")
+      ->check(CLI::IsMember({"ida", "genalpha"}));
+  run->add_option("--rtol", run_options.rtol, "relative tolerance")->check(CLI::PositiveNumber);
+  run->add_option("--step", run_options.step, "generalized-alpha step / IDA max step [s]")
+      ->check(CLI::PositiveNumber);
+  run->add_option("--t-end", run_options.t_end, "end time [s]")->check(CLI::PositiveNumber);
+  run->add_option("--out", run_options.out_dir, "output directory (created; default: out)");
+  run->add_flag("--progress", run_options.progress,
+                "progress bar even if stderr is not a terminal");
+  run->add_flag("--quiet", run_options.quiet, "no summary table");
+
   CLI11_PARSE(app, argc, argv);
   if (*check) return ancf::app::check_command(scene);
   if (*info) return ancf::app::info_command(scene);
-  return 1;
+  return ancf::app::run_command(run_options);
 }

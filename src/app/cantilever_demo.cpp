@@ -21,8 +21,10 @@ int main() {
                                            {5, 0.38762836, 0.71379152, 1.21536812},
                                            {10, 0.55499560, 0.81060902, 1.43028554}}};
   try {
-    fmt::print("Large-deflection cantilever (Mattiasson 1981), L = 1 m, EI = 1 N m^2, EA = 1e7 N,\n"
-               "64 Green-Lagrange/Gerstmayr-Shabana elements, tip dead load P = k EI/L^2, 10 load steps\n\n");
+    fmt::print(
+        "Large-deflection cantilever (Mattiasson 1981), L = 1 m, EI = 1 N m^2, EA = 1e7 N,\n"
+        "64 Green-Lagrange/Gerstmayr-Shabana elements, tip dead load P = k EI/L^2, 10 load "
+        "steps\n\n");
     fmt::print("{:>4} {:>12} {:>12} {:>9} {:>12} {:>12} {:>9} {:>12} {:>9} {:>6}\n", "k", "u/L",
                "ref", "rel.err", "w/L", "ref", "rel.err", "rotation", "rel.err", "iters");
     for (const Row& r : kReference) {
@@ -33,9 +35,10 @@ int main() {
       spec.elements = 64;
       const CantileverTip tip = solve_cantilever(spec, 10);
       const double u = -tip.displacement.x(), w = -tip.displacement.y();
-      fmt::print("{:4.0f} {:12.8f} {:12.8f} {:9.1e} {:12.8f} {:12.8f} {:9.1e} {:12.8f} {:9.1e} {:6d}\n",
-                 r.k, u, r.u_ref, std::abs(u / r.u_ref - 1), w, r.w_ref, std::abs(w / r.w_ref - 1),
-                 tip.rotation, std::abs(tip.rotation / r.rot_ref - 1), tip.stats.newton_iterations);
+      fmt::print(
+          "{:4.0f} {:12.8f} {:12.8f} {:9.1e} {:12.8f} {:12.8f} {:9.1e} {:12.8f} {:9.1e} {:6d}\n",
+          r.k, u, r.u_ref, std::abs(u / r.u_ref - 1), w, r.w_ref, std::abs(w / r.w_ref - 1),
+          tip.rotation, std::abs(tip.rotation / r.rot_ref - 1), tip.stats.newton_iterations);
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "ancf-cantilever: %s\n", e.what());

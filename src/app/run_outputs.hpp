@@ -1,0 +1,45 @@
+// Everything `ancf run` writes per output frame (probes.csv row, .vtp frame, .pvd series) and the
+// run-wide measures of the summary (energy drift, largest constraint violation).
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "ancf/io/probe_recorder.hpp"
+#include "ancf/io/scene.hpp"
+#include "ancf/io/vtk_writer.hpp"
+
+namespace ancf::app {
+
+class RunOutputs {
+ public:
+  /// Creates `dir` (and dir/frames with VTK on). Ownership: keeps a reference to `scene`.
+  RunOutputs(const Scene& scene, const std::string& dir);
+  /// Record one output frame at `state`.
+  void record(const SystemState& state);
+
+  [[nodiscard]] long frames() const { return csv_.rows(); }
+  [[nodiscard]] double last_time() const { return last_time_; }
+  [[nodiscard]] double initial_energy() const { return initial_energy_; }
+  [[nodiscard]] double final_energy() const { return final_energy_; }
+  /// max over frames of |E(t) − E(0)| [J] (a drift only for conservative scenes).
+  [[nodiscard]] double max_energy_change() const { return max_energy_change_; }
+  /// max over frames of max|Φ| [m or -] and max|Φ_q v + Φ_t|.
+  [[nodiscard]] double max_position_violation() const { return max_position_violation_; }
+  [[nodiscard]] double max_velocity_violation() const { return max_velocity_violation_; }
+  [[nodiscard]] const ProbeRecorder& probes() const { return recorder_; }
+
+ private:
+  const Scene& scene_;
+  std::string dir_;
+  Workspace ws_;
+  ProbeRecorder recorder_;
+  CsvWriter csv_;
+  std::optional<PvdSeries> pvd_;
+  double axis_length_ = 0.1;
+  double last_time_ = 0.0, initial_energy_ = 0.0, final_energy_ = 0.0, max_energy_change_ = 0.0;
+  double max_position_violation_ = 0.0, max_velocity_violation_ = 0.0;
+};
+
+}  // namespace ancf::app

@@ -1,0 +1,114 @@
+#include "ancf/io/probe_recorder.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Geometry>
+
+#include "ancf/physics/rigid_body.hpp"
+
+namespace ancf {
+
+namespace {
+
+std::vector<std::string> suffixes(Probe::Kind kind) {
+  switch (kind) {
+    case Probe::Kind::node:
+      return {"x", "y", "z"};
+    case Probe::Kind::body:
+      return {"x", "y", "z", "rx", "ry", "rz"};
+    case Probe::Kind::energy:
+      return {"kinetic", "strain", "spring", "load", "total"};
+    case Probe::Kind::constraint_violation:
+      return {"position", "velocity"};
+    case Probe::Kind::contact:
+      return {"active", "samples", "min_gap", "normal", "friction", "peak"};
+    case Probe::Kind::drive:
+      return {"angle", "rate", "torque"};
+  }
+  return {};
+}
+
+/// Rotation vector (axis × angle) of the body axes, orthonormalized first (Newton iterates and
+/// index-2 drift leave them orthonormal only to the tolerance).
+Vec3 rotation_vector(const Mat3& a) {
+  const Eigen::AngleAxisd aa(Eigen::Quaterniond(a).normalized());
+  return aa.angle() * aa.axis();
+}
+
+}  // namespace
+
+ProbeRecorder::ProbeRecorder(const Model& model, const std::vector<Probe>& probes)
+    : model_(model), probes_(probes), monitor_(model) {
+  columns_.push_back("t");
+  for (const Probe& p : probes)
+    for (const std::string& s : suffixes(p.kind)) columns_.push_back(p.label + "." + s);
+  row_.resize(columns_.size());
+}
+
+const std::vector<double>& ProbeRecorder::evaluate(const SystemState& state, Workspace& ws) {
+  std::size_t k = 0;
+  row_[k++] = state.t;
+  bool contacts_done = false;
+  for (const Probe& p : probes_) {
+    switch (p.kind) {
+      case Probe::Kind::node: {
+        const Index i = model_.node_coordinate(p.target, p.node);
+        for (int d = 0; d < 3; ++d) row_[k++] = state.q[i + d];
+        break;
+      }
+      case Probe::Kind::body: {
+        const BodyData& b = model_.bodies()[p.target];
+        const BodyCoordinates qb = state.q.segment<12>(b.first_coordinate);
+        const Vec3 r = rotation_vector(rotation_of(qb));
+        for (int d = 0; d < 3; ++d) row_[k++] = qb[d];
+        for (int d = 0; d < 3; ++d) row_[k++] = r[d];
+        break;
+      }
+      case Probe::Kind::energy: {
+        const Energies e = energies(model_, state, ws);
+        for (double x : {e.kinetic, e.strain, e.spring, e.load, e.total()}) row_[k++] = x;
+        break;
+      }
+      case Probe::Kind::constraint_violation: {
+        const ConstraintViolation c = constraint_violation(model_, state, ws);
+        row_[k++] = c.position;
+        row_[k++] = c.velocity;
+        break;
+      }
+      case Probe::Kind::contact: {
+        if (!contacts_done) monitor_.update(model_, state, ws);
+        contacts_done = true;
+        const ContactPairState& c = monitor_.states()[p.target];
+        for (double x : {c.active ? 1.0 : 0.0, static_cast<double>(c.active_samples), c.min_gap,
+                         c.normal_force.norm(), c.friction_force.norm(), c.peak_sample_force})
+          row_[k++] = x;
+        break;
+      }
+      case Probe::Kind::drive: {
+        const DriveState d = ancf::evaluate(model_.drives()[p.target].element, as_span(state.q),
+                                            as_span(state.v), state.t, ws.force);
+        row_[k++] = d.angle;
+        row_[k++] = d.rate;
+        row_[k++] = d.torque;
+        break;
+      }
+    }
+  }
+  return row_;
+}
+
+CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& columns)
+    : out_(path) {
+  if (!out_) throw ModelError("cannot create " + path);
+  for (std::size_t i = 0; i < columns.size(); ++i) out_ << (i ? "," : "") << columns[i];
+  out_ << '\n' << std::flush;
+}
+
+void CsvWriter::write(const std::vector<double>& row) {
+  for (std::size_t i = 0; i < row.size(); ++i)
+    out_ << (i ? "," : "") << fmt::format("{:.10g}", row[i]);
+  out_ << '\n' << std::flush;
+  ++rows_;
+}
+
+}  // namespace ancf
