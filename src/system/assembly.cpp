@@ -215,7 +215,9 @@ SystemState SystemState::initial(const Model& model) {
 }
 
 Workspace::Workspace(const Model& model)
-    : frames(model.frames().size()), element_boxes(model.cables().size()), cable_boxes(model.cables().size()) {
+    : frames(model.frames().size()), element_boxes(model.cables().size()),
+      cable_boxes(model.cables().size()),
+      element_boxes_current(model.cables().size(), 0) {
   auto reserve = [&](Index cable) { element_boxes[cable].resize(model.cables()[cable].elements.size()); };
   std::size_t most = 0;
   for (const auto& c : model.cable_shape_contacts()) reserve(c.cable);

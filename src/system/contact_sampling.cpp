@@ -54,21 +54,42 @@ struct ShapeBroadPhase {
   }
 };
 
-// Element boxes of every cable that takes part in a contact pair, and their union per cable.
-void refresh_boxes(const Model& model, const SystemState& state, Workspace& ws) {
+// Whole-cable boxes of every cable that takes part in a contact pair: the box of the Bézier
+// control points of all its elements (each element's box is that of its four control points, and
+// the end point of one element is the start of the next). Element boxes are only marked stale:
+// they are computed on demand (element_boxes_of) for the cables whose whole box passes a pair's
+// test, so pairs that are far apart cost one pass over the nodes per cable and call.
+void refresh_cable_boxes(const Model& model, const SystemState& state, Workspace& ws) {
   for (std::size_t c = 0; c < ws.element_boxes.size(); ++c) {
-    auto& boxes = ws.element_boxes[c];
-    if (boxes.empty()) continue;
+    if (ws.element_boxes[c].empty()) continue;
     const CableData& cable = model.cables()[c];
-    Aabb all;
-    for (std::size_t j = 0; j < boxes.size(); ++j) {
+    Vec3 lower = state.q.segment<3>(cable.first_coordinate), upper = lower;
+    for (std::size_t j = 0; j < cable.elements.size(); ++j) {
+      const Index base = cable.first_coordinate + 6 * static_cast<Index>(j);
+      const double third = cable.elements[j].length / 3.0;
+      const Vec3 a = state.q.segment<3>(base) + third * state.q.segment<3>(base + 3);
+      const Vec3 b = state.q.segment<3>(base + 6) - third * state.q.segment<3>(base + 9);
+      const Vec3 end = state.q.segment<3>(base + 6);
+      lower = lower.cwiseMin(a).cwiseMin(b).cwiseMin(end);
+      upper = upper.cwiseMax(a).cwiseMax(b).cwiseMax(end);
+    }
+    ws.cable_boxes[c].lower = lower;
+    ws.cable_boxes[c].upper = upper;
+    ws.element_boxes_current[c] = 0;
+  }
+}
+
+// Element boxes of one cable at the current state (computed at most once per refresh).
+const std::vector<Aabb>& element_boxes_of(const Model& model, const SystemState& state, Workspace& ws, Index c) {
+  auto& boxes = ws.element_boxes[c];
+  if (!ws.element_boxes_current[c]) {
+    const CableData& cable = model.cables()[c];
+    for (std::size_t j = 0; j < boxes.size(); ++j)
       boxes[j] = element_bounding_box(state.q.segment<12>(cable.first_coordinate + 6 * static_cast<Index>(j)),
                                       cable.elements[j].length);
-      all.extend(boxes[j].lower);
-      all.extend(boxes[j].upper);
-    }
-    ws.cable_boxes[c] = all;
+    ws.element_boxes_current[c] = 1;
   }
+  return boxes;
 }
 
 CableSample sample_of(const CableData& cable, Index element, int k, int samples, const SystemState& state) {
@@ -97,6 +118,7 @@ void visit_cable_shape(const Model& model, const SystemState& state, Workspace& 
   const ShapeBroadPhase broad(shape.shape, pose);
   // Whole-cable test first: a pair that cannot touch costs O(1) beyond the box refresh.
   if (!how.all_samples && !broad.may_touch(inflated(ws.cable_boxes[c.cable], cable.section.radius))) return;
+  const std::vector<Aabb>* boxes = how.all_samples ? nullptr : &element_boxes_of(model, state, ws, c.cable);
   ContactSampleBlocks blocks;
   blocks.pair = pair;
   blocks.cable = c.cable;
@@ -104,7 +126,7 @@ void visit_cable_shape(const Model& model, const SystemState& state, Workspace& 
   if (body) blocks.first_b = shape.body_coordinate, blocks.bb = &model.body_slots(shape.owner_index);
   for (Index local = 0; local < c.count; ++local) {
     const Index j = c.first + local;
-    if (!how.all_samples && !broad.may_touch(inflated(ws.element_boxes[c.cable][j], cable.section.radius))) continue;
+    if (!how.all_samples && !broad.may_touch(inflated((*boxes)[j], cable.section.radius))) continue;
     blocks.first_a = cable.first_coordinate + 6 * j;
     blocks.aa = &model.element_slots(c.cable, j);
     if (body) blocks.ab = &c.element_body[local], blocks.ba = &c.body_element[local];
@@ -125,6 +147,8 @@ void visit_cable_cable(const Model& model, const SystemState& state, Workspace& 
   const double reach = a.section.radius + b.section.radius;
   const Index nb = c.count_b;
   if (!how.all_samples && !inflated(ws.cable_boxes[c.cable_a], reach).overlaps(ws.cable_boxes[c.cable_b])) return;
+  const std::vector<Aabb>* boxes_a = how.all_samples ? nullptr : &element_boxes_of(model, state, ws, c.cable_a);
+  const std::vector<Aabb>* boxes_b = how.all_samples ? nullptr : &element_boxes_of(model, state, ws, c.cable_b);
 
   ContactSampleBlocks blocks;
   blocks.pair = static_cast<Index>(model.cable_shape_contacts().size()) + pair;
@@ -133,10 +157,14 @@ void visit_cable_cable(const Model& model, const SystemState& state, Workspace& 
     const Index i = c.first_a + li;
     // Candidate elements of b (local indices): those whose box comes within `reach` of element i's.
     ws.candidates.clear();
-    const Aabb box_i = inflated(ws.element_boxes[c.cable_a][i], reach);
-    if (how.all_samples || box_i.overlaps(ws.cable_boxes[c.cable_b]))
-      for (Index lj = 0; lj < nb; ++lj)
-        if (how.all_samples || box_i.overlaps(ws.element_boxes[c.cable_b][c.first_b + lj])) ws.candidates.push_back(lj);
+    if (how.all_samples) {
+      for (Index lj = 0; lj < nb; ++lj) ws.candidates.push_back(lj);
+    } else {
+      const Aabb box_i = inflated((*boxes_a)[i], reach);
+      if (box_i.overlaps(ws.cable_boxes[c.cable_b]))
+        for (Index lj = 0; lj < nb; ++lj)
+          if (box_i.overlaps((*boxes_b)[c.first_b + lj])) ws.candidates.push_back(lj);
+    }
     if (ws.candidates.empty()) continue;
     blocks.first_a = a.first_coordinate + 6 * i;
     blocks.aa = &model.element_slots(c.cable_a, i);
@@ -177,7 +205,7 @@ void visit_cable_cable(const Model& model, const SystemState& state, Workspace& 
 void visit_contact_samples(const Model& model, const SystemState& state, Workspace& ws,
                            ContactVisit how, ContactSink& sink) {
   if (model.contact_pair_count() == 0) return;
-  if (!how.all_samples) refresh_boxes(model, state, ws);
+  if (!how.all_samples) refresh_cable_boxes(model, state, ws);
   for (Index p = 0; p < static_cast<Index>(model.cable_shape_contacts().size()); ++p)
     visit_cable_shape(model, state, ws, how, p, sink);
   for (Index p = 0; p < static_cast<Index>(model.cable_cable_contacts().size()); ++p)

@@ -32,6 +32,7 @@ struct Workspace {
   // of the cables in contact pairs (empty for the others), candidate elements, one sample result.
   std::vector<std::vector<Aabb>> element_boxes;
   std::vector<Aabb> cable_boxes;
+  std::vector<char> element_boxes_current;  ///< per cable: element_boxes valid for this call
   std::vector<Index> candidates;
   ContactSampleResult contact;
   long narrow_phase_samples = 0;  ///< contact samples that reached a kernel (cumulative counter)
