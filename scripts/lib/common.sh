@@ -4,7 +4,7 @@
 ANCF_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 ANCF_PACKAGES=(g++ cmake make pkg-config libeigen3-dev libfmt-dev libsundials-dev
                libsuitesparse-dev libgtest-dev libgmock-dev libbenchmark-dev
-               libtomlplusplus-dev libcli11-dev)
+               libtomlplusplus-dev libcli11-dev python3-matplotlib)
 
 # Install only the Debian packages that are not installed yet (fast when nothing is missing).
 ancf_ensure_packages() {
