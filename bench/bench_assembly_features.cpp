@@ -59,7 +59,15 @@ using ancf::Vec3;
 using ancf::VecX;
 
 enum class Variant {
-  axial, bending, damping, gravity, remote_body, hanging_bodies, second_cable, far_contact, far_contact_local
+  axial,
+  bending,
+  damping,
+  gravity,
+  remote_body,
+  hanging_bodies,
+  second_cable,
+  far_contact,
+  far_contact_local
 };
 
 constexpr Index kElements = 200;
@@ -133,9 +141,9 @@ ancf::Model features_scene(Variant v) {
     }
   }
   if (v == Variant::second_cable || v == Variant::far_contact || v == Variant::far_contact_local) {
-    const Index other = b.add_cable("far cable",
-                                    ancf::straight_cable(Vec3(0.0, 50.0, 0.0), Vec3(20.0, 50.0, 0.0), kElements),
-                                    section_for(v));
+    const Index other = b.add_cable(
+        "far cable", ancf::straight_cable(Vec3(0.0, 50.0, 0.0), Vec3(20.0, 50.0, 0.0), kElements),
+        section_for(v));
     const Index drum = b.add_body("far drum", box(5.0, Vec3(0.3, 0.3, 1.0)), Vec3(10.0, -50.0, 0.0),
                                   Mat3::Identity(), Vec3(0.0, 0.1, 0.0), Vec3(0.0, 0.0, 0.5));
     if (v == Variant::far_contact || v == Variant::far_contact_local) {
@@ -144,8 +152,10 @@ ancf::Model features_scene(Variant v) {
       law.onset_depth = 1e-4;
       law.damping = 1.0;
       law.friction = 0.3;
-      const Index cylinder = b.add_body_shape("drum surface", drum, ancf::CappedCylinderShape{Vec3::Zero(), Vec3::UnitZ(), 0.15, 0.5});
-      const Index floor = b.add_ground_shape("floor", ancf::PlaneShape{Vec3(0.0, 0.0, -100.0), Vec3::UnitZ()});
+      const Index cylinder = b.add_body_shape(
+          "drum surface", drum, ancf::CappedCylinderShape{Vec3::Zero(), Vec3::UnitZ(), 0.15, 0.5});
+      const Index floor =
+          b.add_ground_shape("floor", ancf::PlaneShape{Vec3(0.0, 0.0, -100.0), Vec3::UnitZ()});
       if (v == Variant::far_contact)
         b.add_cable_cable_contact("cables", cable, other, law, 3);
       else
@@ -226,7 +236,8 @@ void BM_FeaturesKernelSweep(benchmark::State& state, Variant v, bool matrix) {
     const Index base = c.first_coordinate + 6 * static_cast<Index>(j);
     e[j] = s.state.q.segment<12>(base);
     // The assembly passes zero velocities to an undamped section (they are not read then).
-    e_dot[j] = c.section.has_damping() ? ancf::Vec12(s.state.v.segment<12>(base)) : ancf::Vec12::Zero();
+    e_dot[j] =
+        c.section.has_damping() ? ancf::Vec12(s.state.v.segment<12>(base)) : ancf::Vec12::Zero();
   }
   const ancf::CableEvalRequest request{.stiffness = matrix, .damping_matrix = matrix};
   ancf::CableElementResult out;
@@ -250,9 +261,12 @@ BENCHMARK_CAPTURE(BM_FeaturesResidual, 5_remote_body, Variant::remote_body)
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_FeaturesResidual, 6_hanging_bodies, Variant::hanging_bodies)
     ->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_FeaturesResidual, 7_second_cable, Variant::second_cable)->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_FeaturesResidual, 8_far_contact, Variant::far_contact)->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_FeaturesResidual, 9_far_contact_local, Variant::far_contact_local)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_FeaturesResidual, 7_second_cable, Variant::second_cable)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_FeaturesResidual, 8_far_contact, Variant::far_contact)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_FeaturesResidual, 9_far_contact_local, Variant::far_contact_local)
+    ->Unit(benchmark::kMicrosecond);
 
 BENCHMARK_CAPTURE(BM_FeaturesMatrix, 1_axial, Variant::axial)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_FeaturesMatrix, 2_bending, Variant::bending)->Unit(benchmark::kMicrosecond);
@@ -262,9 +276,12 @@ BENCHMARK_CAPTURE(BM_FeaturesMatrix, 5_remote_body, Variant::remote_body)
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_FeaturesMatrix, 6_hanging_bodies, Variant::hanging_bodies)
     ->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_FeaturesMatrix, 7_second_cable, Variant::second_cable)->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_FeaturesMatrix, 8_far_contact, Variant::far_contact)->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_FeaturesMatrix, 9_far_contact_local, Variant::far_contact_local)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_FeaturesMatrix, 7_second_cable, Variant::second_cable)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_FeaturesMatrix, 8_far_contact, Variant::far_contact)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_FeaturesMatrix, 9_far_contact_local, Variant::far_contact_local)
+    ->Unit(benchmark::kMicrosecond);
 
 BENCHMARK_CAPTURE(BM_FeaturesKernelSweep, residual_1_axial, Variant::axial, false)
     ->Unit(benchmark::kMicrosecond);

@@ -48,15 +48,20 @@ Model contact_assembly_scene(Vec3 shift = Vec3::Zero()) {
   sb.axial_stiffness = 5e3;
   sb.mass_per_length = 0.1;
   sb.radius = 0.008;
-  const Index ca = b.add_cable("a", straight_cable(Vec3(0.0, 0.0, 0.008), Vec3(1.0, 0.0, 0.002), 5), sa);
+  const Index ca =
+      b.add_cable("a", straight_cable(Vec3(0.0, 0.0, 0.008), Vec3(1.0, 0.0, 0.002), 5), sa);
   // b crosses a at one of its samples (y = 0): crossing contact needs samples spaced ≲ the radii.
   const Vec3 b_offset(0.5, 0.03125, 0.018);
-  const Index cb = b.add_cable("b", straight_cable(Vec3(0.0, -0.5, 0.0) + b_offset + shift, Vec3(0.0, 0.5, 0.0) + b_offset + shift, 4), sb);
+  const Index cb = b.add_cable("b",
+                               straight_cable(Vec3(0.0, -0.5, 0.0) + b_offset + shift,
+                                              Vec3(0.0, 0.5, 0.0) + b_offset + shift, 4),
+                               sb);
   RigidBodyInertia drum;
   drum.mass = 2.0;
   drum.inertia = Vec3(0.01, 0.02, 0.015).asDiagonal();
   const Mat3 r = Eigen::AngleAxisd(0.7, Vec3(0.3, -0.5, 1.0).normalized()).toRotationMatrix();
-  const Index body = b.add_body("drum", drum, Vec3(0.25, 0.0, 0.06) + shift, r, Vec3(0.1, 0.0, -0.2), Vec3(0.5, -1.0, 0.3));
+  const Index body = b.add_body("drum", drum, Vec3(0.25, 0.0, 0.06) + shift, r,
+                                Vec3(0.1, 0.0, -0.2), Vec3(0.5, -1.0, 0.3));
   CappedCylinderShape cyl;
   cyl.axis = r.transpose() * Vec3::UnitY();  // body-frame axis that is global y initially
   cyl.radius = 0.05;
@@ -72,7 +77,8 @@ Model contact_assembly_scene(Vec3 shift = Vec3::Zero()) {
   law.damping = 0.5;
   law.friction = 0.3;
   law.regularization_speed = 0.05;
-  const Index plane = b.add_ground_shape("floor", PlaneShape{Vec3(0.0, 0.0, -shift.norm()), Vec3::UnitZ()});
+  const Index plane =
+      b.add_ground_shape("floor", PlaneShape{Vec3(0.0, 0.0, -shift.norm()), Vec3::UnitZ()});
   const Index drum_shape = b.add_body_shape("drum", body, cyl);
   const Index ball = b.add_frame_shape("ball", frame, SphereShape{Vec3(0.05, 0.0, 0.035), 0.03});
   b.add_cable_shape_contact("a-floor", ca, plane, law, 3);
@@ -102,7 +108,8 @@ MatX dense(const Model& model, const VecX& values) {
   const SparsityPattern& p = model.pattern();
   MatX m = MatX::Zero(p.size(), p.size());
   for (Index c = 0; c < p.size(); ++c)
-    for (Index k = p.column_start()[c]; k < p.column_start()[c + 1]; ++k) m(p.row_index()[k], c) = values[k];
+    for (Index k = p.column_start()[c]; k < p.column_start()[c + 1]; ++k)
+      m(p.row_index()[k], c) = values[k];
   return m;
 }
 
@@ -113,9 +120,10 @@ TEST(ContactAssembly, EveryPairKindIsInContactInTheTestScene) {
   for (unsigned seed : {3u, 4u}) {
     contact_states(model, perturbed_state(model, seed), ws, states);
     for (Index p = 0; p < model.contact_pair_count(); ++p) {
-      std::printf("  seed %u %-8s active samples %2d, min gap %.2e m, |normal| %.3f N, |friction| %.3f N\n", seed,
-                  model.contact_pair_name(p).c_str(), states[p].active_samples, states[p].min_gap,
-                  states[p].normal_force.norm(), states[p].friction_force.norm());
+      std::printf(
+          "  seed %u %-8s active samples %2d, min gap %.2e m, |normal| %.3f N, |friction| %.3f N\n",
+          seed, model.contact_pair_name(p).c_str(), states[p].active_samples, states[p].min_gap,
+          states[p].normal_force.norm(), states[p].friction_force.norm());
       EXPECT_TRUE(states[p].active) << model.contact_pair_name(p);
       EXPECT_GT(states[p].friction_force.norm(), 0.0) << model.contact_pair_name(p);
     }
@@ -126,7 +134,8 @@ TEST(ContactAssembly, EveryPairKindIsInContactInTheTestScene) {
 TEST(ContactAssembly, IterationMatrixEqualsFiniteDifferencesOfTheResidual) {
   const Model model = contact_assembly_scene();
   Workspace ws(model);
-  const Index n = model.coordinate_count(), m = model.multiplier_count(), size = model.system_size();
+  const Index n = model.coordinate_count(), m = model.multiplier_count(),
+              size = model.system_size();
   VecX values(model.pattern().nonzeros());
   for (unsigned seed : {3u, 4u}) {
     const SystemState s0 = perturbed_state(model, seed);
@@ -146,16 +155,18 @@ TEST(ContactAssembly, IterationMatrixEqualsFiniteDifferencesOfTheResidual) {
         return r;
       };
       const fdcheck::Result r = fdcheck::check_jacobian(residual, y, j);
-      std::printf("  seed %u d/d%s: worst error/tolerance %.3f, error/max|J| %.2e\n", seed, which == 0 ? "q" : "v",
-                  r.max_ratio, r.max_rel);
-      EXPECT_TRUE(r.ok()) << "row " << model.describe_row(r.row) << ", column " << model.describe_row(r.col)
-                          << ": analytic " << r.analytic << ", FD " << r.fd;
+      std::printf("  seed %u d/d%s: worst error/tolerance %.3f, error/max|J| %.2e\n", seed,
+                  which == 0 ? "q" : "v", r.max_ratio, r.max_rel);
+      EXPECT_TRUE(r.ok()) << "row " << model.describe_row(r.row) << ", column "
+                          << model.describe_row(r.col) << ": analytic " << r.analytic << ", FD "
+                          << r.fd;
     }
   }
 }
 
 // The GGL Jacobian (IDA) gets the contact terms through the same code, with the q and v blocks
-// apart: J = ∂F/∂y + c_j ∂F/∂y' against central differences of F along y with y' = y'_0 + c_j(y − y_0).
+// apart: J = ∂F/∂y + c_j ∂F/∂y' against central differences of F along y with y' = y'_0 + c_j(y −
+// y_0).
 TEST(ContactAssembly, GglJacobianEqualsFiniteDifferences) {
   const Model model = contact_assembly_scene();
   GglProblem ggl(model);
@@ -177,7 +188,8 @@ TEST(ContactAssembly, GglJacobianEqualsFiniteDifferences) {
   ggl.jacobian(t, as_span(y), as_span(yp), c_j, as_span(values));
   MatX j = MatX::Zero(size, size);
   for (Index c = 0; c < size; ++c)
-    for (Index k = p.column_start()[c]; k < p.column_start()[c + 1]; ++k) j(p.row_index()[k], c) = values[k];
+    for (Index k = p.column_start()[c]; k < p.column_start()[c + 1]; ++k)
+      j(p.row_index()[k], c) = values[k];
   const VecX y0 = y;
   const fdcheck::Function f = [&](const VecX& x) {
     const VecX xp = yp + c_j * (x - y0);
@@ -186,9 +198,10 @@ TEST(ContactAssembly, GglJacobianEqualsFiniteDifferences) {
     return r;
   };
   const fdcheck::Result r = fdcheck::check_jacobian(f, y, j);
-  std::printf("  GGL Jacobian with contact: worst error/tolerance %.3f, error/max|J| %.2e\n", r.max_ratio, r.max_rel);
-  EXPECT_TRUE(r.ok()) << ggl.describe_row(r.row) << " / " << ggl.describe_row(r.col) << ": analytic " << r.analytic
-                      << ", FD " << r.fd;
+  std::printf("  GGL Jacobian with contact: worst error/tolerance %.3f, error/max|J| %.2e\n",
+              r.max_ratio, r.max_rel);
+  EXPECT_TRUE(r.ok()) << ggl.describe_row(r.row) << " / " << ggl.describe_row(r.col)
+                      << ": analytic " << r.analytic << ", FD " << r.fd;
 }
 
 // Far apart (cable b and every shape shifted by 10 m), the broad phase skips all narrow-phase work:
@@ -259,7 +272,6 @@ TEST(ContactOutput, ResultantsMatchTheResidual) {
   EXPECT_EQ(monitor.first_contact_of_pair(0), 0.2);
 }
 
-
 // ---- Physical checks ------------------------------------------------------------------------
 
 // T_high/T_low from the anchor reaction of the static capstan (cable at rest, drum surface
@@ -278,8 +290,8 @@ double capstan_ratio(const CapstanSpec& spec, int* iterations = nullptr) {
 }
 
 // REFERENCES §6: T_high/T_low → e^{μθ} as v_ε/V → 0. Regularized friction gives μ_eff =
-// μ V/√(V² + v_ε²), so at v_ε/V = 0.2, 0.1, 0.02 the error in ln(ratio) is expected to fall by about
-// 4× and then 25×; the issue asks for 2 % at the smallest.
+// μ V/√(V² + v_ε²), so at v_ε/V = 0.2, 0.1, 0.02 the error in ln(ratio) is expected to fall by
+// about 4× and then 25×; the issue asks for 2 % at the smallest.
 TEST(Capstan, TensionRatioApproachesEulerEytelwein) {
   for (const double mu : {0.2, 0.5}) {
     std::vector<double> errors;
@@ -291,8 +303,10 @@ TEST(Capstan, TensionRatioApproachesEulerEytelwein) {
       const double ratio = capstan_ratio(spec, &iterations);
       const double exact = std::exp(mu * spec.wrap_angle);
       errors.push_back(std::abs(ratio / exact - 1.0));
-      std::printf("  mu %.1f  v_eps/V %.2f: T_high/T_low %.6f, exp(mu theta) %.6f, rel. error %.2e (%d Newton iterations)\n",
-                  mu, v_eps / spec.surface_speed, ratio, exact, errors.back(), iterations);
+      std::printf(
+          "  mu %.1f  v_eps/V %.2f: T_high/T_low %.6f, exp(mu theta) %.6f, rel. error %.2e (%d "
+          "Newton iterations)\n",
+          mu, v_eps / spec.surface_speed, ratio, exact, errors.back(), iterations);
     }
     EXPECT_LT(errors.back(), 0.02);
     EXPECT_LT(errors[1], errors[0]);
@@ -306,8 +320,8 @@ TEST(Capstan, QuarterWrap) {
   spec.wrap_angle = 0.5 * std::numbers::pi;
   spec.friction = 0.5;
   const double ratio = capstan_ratio(spec), exact = std::exp(spec.friction * spec.wrap_angle);
-  std::printf("  theta pi/2, mu 0.5: T_high/T_low %.6f, exp(mu theta) %.6f, rel. error %.2e\n", ratio, exact,
-              std::abs(ratio / exact - 1.0));
+  std::printf("  theta pi/2, mu 0.5: T_high/T_low %.6f, exp(mu theta) %.6f, rel. error %.2e\n",
+              ratio, exact, std::abs(ratio / exact - 1.0));
   EXPECT_LT(std::abs(ratio / exact - 1.0), 0.02);
 }
 
@@ -348,16 +362,19 @@ DropResult drop_and_settle(int samples) {
   const double expected = law.static_penetration(c.section.mass_per_length * 9.81);
   DropResult r;
   for (Index k = 0; k < c.node_count; ++k) {
-    const double error = std::abs((c.section.radius - s.q[c.first_coordinate + 6 * k + 2]) / expected - 1.0);
+    const double error =
+        std::abs((c.section.radius - s.q[c.first_coordinate + 6 * k + 2]) / expected - 1.0);
     r.worst_error = std::max(r.worst_error, error);
     if (2 * k == c.node_count - 1) r.middle_error = error;
     r.speed = std::max(r.speed, s.v.segment<3>(c.first_coordinate + 6 * k).norm());
   }
   r.first_contact = monitor.first_contact_of_cable(0);
   r.fall = std::sqrt(2.0 * spec.drop_height / 9.81);
-  std::printf("  %2d samples/element: static depth %.6e m; middle node rel. error %.2e, worst (end) %.2e; max speed %.2e m/s; "
-              "first contact %.4f s (free fall %.4f s)\n",
-              samples, expected, r.middle_error, r.worst_error, r.speed, r.first_contact, r.fall);
+  std::printf(
+      "  %2d samples/element: static depth %.6e m; middle node rel. error %.2e, worst (end) %.2e; "
+      "max speed %.2e m/s; "
+      "first contact %.4f s (free fall %.4f s)\n",
+      samples, expected, r.middle_error, r.worst_error, r.speed, r.first_contact, r.fall);
   return r;
 }
 
@@ -365,8 +382,8 @@ TEST(DropOnPlane, ComesToRestAtTheStaticPenaltyDepth) {
   const DropResult coarse = drop_and_settle(3), fine = drop_and_settle(12);
   for (const DropResult& r : {coarse, fine}) {
     EXPECT_LT(r.middle_error, 1e-6);
-    EXPECT_LT(r.speed, 1e-8);                      // at rest
-    EXPECT_NEAR(r.first_contact, r.fall, 2e-3);    // contact seen within the 1 ms output interval
+    EXPECT_LT(r.speed, 1e-8);                    // at rest
+    EXPECT_NEAR(r.first_contact, r.fall, 2e-3);  // contact seen within the 1 ms output interval
   }
   EXPECT_LT(fine.worst_error, coarse.worst_error / 8.0);  // (12/3)² = 16 expected
 }
@@ -396,9 +413,11 @@ TEST(CableImpact, ConservesLinearMomentum) {
   }
   const Vec3 p1 = momentum(model, s.q, s.v).linear;
   const double vb = s.v[model.node_coordinate(1, 3) + 2], va = s.v[model.node_coordinate(0, 4) + 2];
-  std::printf("  |p0| %.6e, max drift %.3e after %ld steps; peak contact force %.3f N; first contact %.4f s; "
-              "mid-node z velocities a %.4f, b %.4f m/s\n",
-              p0.norm(), drift, stepper.statistics().steps, peak, monitor.first_contact_of_pair(0), va, vb);
+  std::printf(
+      "  |p0| %.6e, max drift %.3e after %ld steps; peak contact force %.3f N; first contact %.4f "
+      "s; "
+      "mid-node z velocities a %.4f, b %.4f m/s\n",
+      p0.norm(), drift, stepper.statistics().steps, peak, monitor.first_contact_of_pair(0), va, vb);
   ASSERT_FALSE(std::isnan(monitor.first_contact_of_pair(0)));  // the impact happened
   EXPECT_LT(va, -0.1);                                         // and pushed cable a down
   // Round-off: per step ~ a few ε of the momentum and of h × the largest force.

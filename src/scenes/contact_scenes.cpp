@@ -1,7 +1,7 @@
 #include "ancf/scenes/contact_scenes.hpp"
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <numbers>
 #include <vector>
 
@@ -48,7 +48,8 @@ Model capstan_model(const CapstanSpec& spec) {
     if (s <= ls) return {p0 - (ls - s) * t0, t0};
     if (s <= ls + arc) {
       const double phi = phi0 - (s - ls) / rho;
-      return {rho * Vec3(std::cos(phi), std::sin(phi), 0.0), Vec3(std::sin(phi), -std::cos(phi), 0.0)};
+      return {rho * Vec3(std::cos(phi), std::sin(phi), 0.0),
+              Vec3(std::sin(phi), -std::cos(phi), 0.0)};
     }
     return {p1 + (s - ls - arc) * t1, t1};
   };
@@ -96,7 +97,8 @@ Model drop_on_plane_model(const DropSpec& spec) {
   section.bending_damping = 1e-4;
   section.radius = 0.005;
   const double z = section.radius + spec.drop_height;
-  const Index cable = b.add_cable("rope", straight_cable(Vec3(0.0, 0.0, z), Vec3(0.5, 0.0, z), 10), section);
+  const Index cable =
+      b.add_cable("rope", straight_cable(Vec3(0.0, 0.0, z), Vec3(0.5, 0.0, z), 10), section);
   const Index ground = b.add_ground_shape("floor", PlaneShape{Vec3::Zero(), Vec3::UnitZ()});
   ContactLaw law;
   law.stiffness = spec.stiffness;
@@ -116,11 +118,14 @@ Model cable_impact_model(double speed, double contact_damping) {
   section.bending_stiffness = 1e-2;
   section.mass_per_length = 0.1;
   section.radius = 0.005;
-  const Index a = b.add_cable("a", straight_cable(Vec3(-0.25, 0.03, 0.0), Vec3(0.25, 0.03, 0.0), 8), section);
-  const Index c = b.add_cable("b", straight_cable(Vec3(0.05, -0.2, 0.02), Vec3(0.05, 0.2, 0.02), 6), section);
+  const Index a =
+      b.add_cable("a", straight_cable(Vec3(-0.25, 0.03, 0.0), Vec3(0.25, 0.03, 0.0), 8), section);
+  const Index c =
+      b.add_cable("b", straight_cable(Vec3(0.05, -0.2, 0.02), Vec3(0.05, 0.2, 0.02), 6), section);
   std::vector<NodeCoordinates> v(7, NodeCoordinates::Zero());
   for (auto& n : v) n.head<3>() = Vec3(0.0, 0.0, -speed);
-  b.set_initial_configuration(c, straight_cable(Vec3(0.05, -0.2, 0.02), Vec3(0.05, 0.2, 0.02), 6), &v);
+  b.set_initial_configuration(c, straight_cable(Vec3(0.05, -0.2, 0.02), Vec3(0.05, 0.2, 0.02), 6),
+                              &v);
   ContactLaw law;
   law.stiffness = 1e5;
   law.onset_depth = 1e-4;

@@ -63,7 +63,8 @@ void add_mass_matrix(const Mat4& m4, const std::array<Index, 144>& slots, double
 // Scatter −scale·Q of a force element into the dynamic residual rows.
 inline void subtract_force(const BlockList& blocks, const ForceResult& f, double scale,
                            Eigen::Map<VecX>& r) {
-  for (int b = 0; b < blocks.count; ++b) r.segment<3>(blocks.blocks[b]) -= scale * f.force.segment<3>(3 * b);
+  for (int b = 0; b < blocks.count; ++b)
+    r.segment<3>(blocks.blocks[b]) -= scale * f.force.segment<3>(3 * b);
 }
 
 // position part −= w_q ∂Q/∂q, velocity part −= w_v ∂Q/∂v, through the element's column-major slots.
@@ -172,7 +173,8 @@ void add_iteration_matrix_to(const Model& model, const SystemState& state,
   }
   if (model.contact_pair_count() > 0 && (w.w_q != 0.0 || w.w_v != 0.0)) {
     MatrixContactSink<Target> sink(t, w.w_q, w.w_v);
-    detail::visit_contact_samples(model, state, ws, {.jacobians = true, .all_samples = false}, sink);
+    detail::visit_contact_samples(model, state, ws, {.jacobians = true, .all_samples = false},
+                                  sink);
   }
 
   // Constraint blocks Φ_q, Φ_qᵀ and the geometric stiffness w_q ∂(Φ_qᵀλ)/∂q = w_q λ α_k β_m I₃.
@@ -215,10 +217,13 @@ SystemState SystemState::initial(const Model& model) {
 }
 
 Workspace::Workspace(const Model& model)
-    : frames(model.frames().size()), element_boxes(model.cables().size()),
+    : frames(model.frames().size()),
+      element_boxes(model.cables().size()),
       cable_boxes(model.cables().size()),
       element_boxes_current(model.cables().size(), 0) {
-  auto reserve = [&](Index cable) { element_boxes[cable].resize(model.cables()[cable].elements.size()); };
+  auto reserve = [&](Index cable) {
+    element_boxes[cable].resize(model.cables()[cable].elements.size());
+  };
   std::size_t most = 0;
   for (const auto& c : model.cable_shape_contacts()) reserve(c.cable);
   for (const auto& c : model.cable_cable_contacts()) {
@@ -247,14 +252,16 @@ void assemble_residual(const Model& model, const SystemState& state, double load
   const auto frames = ws.frames_at(model, state.t);
   const auto q = as_span(state.q), v = as_span(state.v);
 
-  for_each_element(model, state.q, state.v,
-                   [&](Index, Index j, const CableData& c, Index base, const Vec12& e, const Vec12& e_dot) {
-                     evaluate_cable_element(c.section, c.elements[j], e, e_dot, {}, ws.element);
-                     rq.segment<12>(base) += ws.element.force;
-                     if (inertia) add_mass_times(c.mass[j], base, state.a, rq);
-                   });
+  for_each_element(
+      model, state.q, state.v,
+      [&](Index, Index j, const CableData& c, Index base, const Vec12& e, const Vec12& e_dot) {
+        evaluate_cable_element(c.section, c.elements[j], e, e_dot, {}, ws.element);
+        rq.segment<12>(base) += ws.element.force;
+        if (inertia) add_mass_times(c.mass[j], base, state.a, rq);
+      });
   if (inertia)
-    for (const BodyData& b : model.bodies()) add_mass_times(b.mass, b.first_coordinate, state.a, rq);
+    for (const BodyData& b : model.bodies())
+      add_mass_times(b.mass, b.first_coordinate, state.a, rq);
 
   for (const auto& f : model.point_forces()) {
     evaluate(f.element, state.t, ws.force);
@@ -274,7 +281,8 @@ void assemble_residual(const Model& model, const SystemState& state, double load
   }
   if (model.contact_pair_count() > 0) {
     ResidualContactSink sink(rq);
-    detail::visit_contact_samples(model, state, ws, {.jacobians = false, .all_samples = false}, sink);
+    detail::visit_contact_samples(model, state, ws, {.jacobians = false, .all_samples = false},
+                                  sink);
   }
 
   BlockVec gu, gw;
@@ -286,8 +294,10 @@ void assemble_residual(const Model& model, const SystemState& state, double load
     const double lambda = state.lambda[i];
     if (lambda == 0.0) continue;
     gradient_blocks(row, u, w, false, gu, gw);
-    for (int k = 0; k < row.u.term_count; ++k) rq.segment<3>(row.u.terms[k].block) += lambda * gu[k];
-    for (int k = 0; k < row.w.term_count; ++k) rq.segment<3>(row.w.terms[k].block) += lambda * gw[k];
+    for (int k = 0; k < row.u.term_count; ++k)
+      rq.segment<3>(row.u.terms[k].block) += lambda * gu[k];
+    for (int k = 0; k < row.w.term_count; ++k)
+      rq.segment<3>(row.w.terms[k].block) += lambda * gw[k];
   }
 }
 
@@ -306,7 +316,8 @@ void assemble_velocity_constraint(const Model& model, const SystemState& state, 
                                   std::span<double> out) {
   const auto frames = ws.frames_at(model, state.t);
   for (Index i = 0; i < model.multiplier_count(); ++i) {
-    const DotConstraintValues c = evaluate(model.rows()[i], as_span(state.q), as_span(state.v), frames);
+    const DotConstraintValues c =
+        evaluate(model.rows()[i], as_span(state.q), as_span(state.v), frames);
     out[i] = c.phi_q_v + c.phi_t;
   }
 }
@@ -323,14 +334,16 @@ Energies energies(const Model& model, const SystemState& state, Workspace& ws) {
   e.kinetic = kinetic_energy(model, state.v);
   e.strain = strain_energy(model, state.q);
   const auto frames = ws.frames_at(model, state.t);
-  for (const auto& f : model.spring_dampers()) e.spring += potential_energy(f.element, as_span(state.q), frames);
+  for (const auto& f : model.spring_dampers())
+    e.spring += potential_energy(f.element, as_span(state.q), frames);
   e.load = -model.constant_load().dot(state.q);
   return e;
 }
 
 Momentum momentum(const Model& model, const VecX& q, const VecX& v) {
   Momentum p;
-  // ∫ρ ṙ = Σ_s (Σ_p t_p m4(p, s)) v_s with t the translation field; ∫ρ r × ṙ = Σ m4(p, s) x_p × v_s.
+  // ∫ρ ṙ = Σ_s (Σ_p t_p m4(p, s)) v_s with t the translation field; ∫ρ r × ṙ = Σ m4(p, s) x_p ×
+  // v_s.
   auto add = [&](const Mat4& m4, Index base, const Vec4& translation) {
     for (int a = 0; a < 4; ++a)
       for (int s = 0; s < 4; ++s) {
@@ -346,12 +359,15 @@ Momentum momentum(const Model& model, const VecX& q, const VecX& v) {
   return p;
 }
 
-ConstraintViolation constraint_violation(const Model& model, const SystemState& state, Workspace& ws) {
+ConstraintViolation constraint_violation(const Model& model, const SystemState& state,
+                                         Workspace& ws) {
   ConstraintViolation cv;
   const auto frames = ws.frames_at(model, state.t);
   for (Index i = 0; i < model.multiplier_count(); ++i) {
-    const DotConstraintValues c = evaluate(model.rows()[i], as_span(state.q), as_span(state.v), frames);
-    if (std::abs(c.phi) > cv.position) cv.position = std::abs(c.phi), cv.position_row = model.coordinate_count() + i;
+    const DotConstraintValues c =
+        evaluate(model.rows()[i], as_span(state.q), as_span(state.v), frames);
+    if (std::abs(c.phi) > cv.position)
+      cv.position = std::abs(c.phi), cv.position_row = model.coordinate_count() + i;
     const double vel = std::abs(c.phi_q_v + c.phi_t);
     if (vel > cv.velocity) cv.velocity = vel, cv.velocity_row = model.coordinate_count() + i;
   }
@@ -367,12 +383,13 @@ void assemble_iteration_matrix(const Model& model, const SystemState& state,
 double strain_energy(const Model& model, const VecX& q) {
   double u = 0.0;
   CableElementResult res;
-  for_each_element(model, q, q, [&](Index, Index j, const CableData& c, Index, const Vec12& e, const Vec12&) {
-    CableSection elastic = c.section;
-    elastic.axial_damping = elastic.bending_damping = 0.0;
-    evaluate_cable_element(elastic, c.elements[j], e, Vec12::Zero(), {}, res);
-    u += res.energy;
-  });
+  for_each_element(model, q, q,
+                   [&](Index, Index j, const CableData& c, Index, const Vec12& e, const Vec12&) {
+                     CableSection elastic = c.section;
+                     elastic.axial_damping = elastic.bending_damping = 0.0;
+                     evaluate_cable_element(elastic, c.elements[j], e, Vec12::Zero(), {}, res);
+                     u += res.energy;
+                   });
   return u;
 }
 
@@ -380,10 +397,12 @@ double kinetic_energy(const Model& model, const VecX& v) {
   double t = 0.0;
   auto add = [&](const Mat4& m4, Index base) {
     for (int p = 0; p < 4; ++p)
-      for (int s = 0; s < 4; ++s) t += 0.5 * m4(p, s) * v.segment<3>(base + 3 * p).dot(v.segment<3>(base + 3 * s));
+      for (int s = 0; s < 4; ++s)
+        t += 0.5 * m4(p, s) * v.segment<3>(base + 3 * p).dot(v.segment<3>(base + 3 * s));
   };
   for (const CableData& c : model.cables())
-    for (Index j = 0; j < static_cast<Index>(c.elements.size()); ++j) add(c.mass[j], c.first_coordinate + 6 * j);
+    for (Index j = 0; j < static_cast<Index>(c.elements.size()); ++j)
+      add(c.mass[j], c.first_coordinate + 6 * j);
   for (const BodyData& b : model.bodies()) add(b.mass, b.first_coordinate);
   return t;
 }

@@ -14,22 +14,24 @@ namespace {
 
 void require_radius(const std::string& pair, const std::string& cable, double radius) {
   if (!(radius > 0.0) || !std::isfinite(radius))
-    throw ModelError("contact '" + pair + "': cable '" + cable + "' needs a cross-section radius > 0 m, got " +
-                     std::to_string(radius));
+    throw ModelError("contact '" + pair + "': cable '" + cable +
+                     "' needs a cross-section radius > 0 m, got " + std::to_string(radius));
 }
 
 void require_samples(const std::string& pair, int samples) {
   if (samples < 1)
-    throw ModelError("contact '" + pair + "': samples per element must be >= 1, got " + std::to_string(samples));
+    throw ModelError("contact '" + pair + "': samples per element must be >= 1, got " +
+                     std::to_string(samples));
 }
 
 // Resolve a range against a cable of n elements: [first, first + count) within [0, n), count ≥ 1.
-std::pair<Index, Index> resolve_range(const std::string& pair, const std::string& cable, ElementRange r, Index n) {
+std::pair<Index, Index> resolve_range(const std::string& pair, const std::string& cable,
+                                      ElementRange r, Index n) {
   const Index count = r.count < 0 ? n - r.first : r.count;
   if (r.first < 0 || count < 1 || r.first + count > n)
     throw ModelError("contact '" + pair + "': element range [" + std::to_string(r.first) + ", " +
-                     std::to_string(r.first + count) + ") is not inside cable '" + cable + "' (elements 0.." +
-                     std::to_string(n - 1) + ")");
+                     std::to_string(r.first + count) + ") is not inside cable '" + cable +
+                     "' (elements 0.." + std::to_string(n - 1) + ")");
   return {r.first, count};
 }
 
@@ -38,7 +40,8 @@ std::pair<Index, Index> resolve_range(const std::string& pair, const std::string
 Index ModelBuilder::add_shape(ContactShapeData shape) {
   if (shape.name.empty()) throw ModelError("contact shape: a name is required");
   for (const auto& s : shapes_)
-    if (s.name == shape.name) throw ModelError("contact shape name '" + shape.name + "' is used twice");
+    if (s.name == shape.name)
+      throw ModelError("contact shape name '" + shape.name + "' is used twice");
   validate_shape(shape.shape, "contact shape '" + shape.name + "'");
   shapes_.push_back(std::move(shape));
   return static_cast<Index>(shapes_.size()) - 1;
@@ -50,7 +53,8 @@ Index ModelBuilder::add_ground_shape(std::string name, const ContactShape& shape
 
 Index ModelBuilder::add_frame_shape(std::string name, int frame, const ContactShape& shape) {
   if (frame < 0 || frame >= static_cast<int>(frames_.size()))
-    throw ModelError("contact shape '" + name + "': no driven frame with index " + std::to_string(frame));
+    throw ModelError("contact shape '" + name + "': no driven frame with index " +
+                     std::to_string(frame));
   return add_shape({std::move(name), shape, ContactShapeData::Owner::frame, frame, -1});
 }
 
@@ -65,7 +69,8 @@ void ModelBuilder::add_cable_shape_contact(std::string name, Index cable, Index 
   require_new_name(name, "contact");
   const PendingCable& c = cable_at(cable, "add_cable_shape_contact");
   if (shape < 0 || shape >= static_cast<Index>(shapes_.size()))
-    throw ModelError("contact '" + name + "': no contact shape with index " + std::to_string(shape));
+    throw ModelError("contact '" + name + "': no contact shape with index " +
+                     std::to_string(shape));
   require_radius(name, c.name, c.section.radius);
   require_samples(name, samples_per_element);
   law.validate("contact '" + name + "'");
@@ -86,14 +91,17 @@ void ModelBuilder::add_cable_cable_contact(std::string name, Index cable_a, Inde
   const PendingCable& a = cable_at(cable_a, "add_cable_cable_contact");
   const PendingCable& b = cable_at(cable_b, "add_cable_cable_contact");
   if (cable_a == cable_b)
-    throw ModelError("contact '" + name + "': cable '" + a.name + "' against itself (self-contact is not supported)");
+    throw ModelError("contact '" + name + "': cable '" + a.name +
+                     "' against itself (self-contact is not supported)");
   require_radius(name, a.name, a.section.radius);
   require_radius(name, b.name, b.section.radius);
   require_samples(name, samples_per_element);
   law.validate("contact '" + name + "'");
   CableCableContactData d;
-  std::tie(d.first_a, d.count_a) = resolve_range(name, a.name, range_a, a.reference.element_count());
-  std::tie(d.first_b, d.count_b) = resolve_range(name, b.name, range_b, b.reference.element_count());
+  std::tie(d.first_a, d.count_a) =
+      resolve_range(name, a.name, range_a, a.reference.element_count());
+  std::tie(d.first_b, d.count_b) =
+      resolve_range(name, b.name, range_b, b.reference.element_count());
   d.name = std::move(name);
   d.cable_a = cable_a;
   d.cable_b = cable_b;

@@ -39,12 +39,14 @@ ContactMonitor::ContactMonitor(const Model& model)
     : states_(model.contact_pair_count()),
       pair_first_(model.contact_pair_count(), std::nan("")),
       cable_first_(model.cables().size(), std::nan("")) {
-  for (const auto& c : model.cable_shape_contacts()) pair_cables_a_.push_back(c.cable), pair_cables_b_.push_back(-1);
-  for (const auto& c : model.cable_cable_contacts()) pair_cables_a_.push_back(c.cable_a), pair_cables_b_.push_back(c.cable_b);
+  for (const auto& c : model.cable_shape_contacts())
+    pair_cables_a_.push_back(c.cable), pair_cables_b_.push_back(-1);
+  for (const auto& c : model.cable_cable_contacts())
+    pair_cables_a_.push_back(c.cable_a), pair_cables_b_.push_back(c.cable_b);
 }
 
-std::span<const ContactPairState> ContactMonitor::update(const Model& model, const SystemState& state,
-                                                         Workspace& ws) {
+std::span<const ContactPairState> ContactMonitor::update(const Model& model,
+                                                         const SystemState& state, Workspace& ws) {
   contact_states(model, state, ws, states_);
   for (std::size_t p = 0; p < states_.size(); ++p) {
     if (!states_[p].active) continue;

@@ -44,8 +44,10 @@ struct ShapeBroadPhase {
   const ShapeOwnerPose& pose;
   Aabb box;  // global box of a sphere or cylinder
   ShapeBroadPhase(const ContactShape& s, const ShapeOwnerPose& p) : shape(s), pose(p) {
-    if (const auto* sphere = std::get_if<SphereShape>(&s)) box = shape_bounding_box(*sphere, p.origin, p.rotation);
-    if (const auto* cyl = std::get_if<CappedCylinderShape>(&s)) box = shape_bounding_box(*cyl, p.origin, p.rotation);
+    if (const auto* sphere = std::get_if<SphereShape>(&s))
+      box = shape_bounding_box(*sphere, p.origin, p.rotation);
+    if (const auto* cyl = std::get_if<CappedCylinderShape>(&s))
+      box = shape_bounding_box(*cyl, p.origin, p.rotation);
   }
   [[nodiscard]] bool may_touch(const Aabb& element_box) const {
     if (const auto* plane = std::get_if<PlaneShape>(&shape))
@@ -80,19 +82,22 @@ void refresh_cable_boxes(const Model& model, const SystemState& state, Workspace
 }
 
 // Element boxes of one cable at the current state (computed at most once per refresh).
-const std::vector<Aabb>& element_boxes_of(const Model& model, const SystemState& state, Workspace& ws, Index c) {
+const std::vector<Aabb>& element_boxes_of(const Model& model, const SystemState& state,
+                                          Workspace& ws, Index c) {
   auto& boxes = ws.element_boxes[c];
   if (!ws.element_boxes_current[c]) {
     const CableData& cable = model.cables()[c];
     for (std::size_t j = 0; j < boxes.size(); ++j)
-      boxes[j] = element_bounding_box(state.q.segment<12>(cable.first_coordinate + 6 * static_cast<Index>(j)),
-                                      cable.elements[j].length);
+      boxes[j] = element_bounding_box(
+          state.q.segment<12>(cable.first_coordinate + 6 * static_cast<Index>(j)),
+          cable.elements[j].length);
     ws.element_boxes_current[c] = 1;
   }
   return boxes;
 }
 
-CableSample sample_of(const CableData& cable, Index element, int k, int samples, const SystemState& state) {
+CableSample sample_of(const CableData& cable, Index element, int k, int samples,
+                      const SystemState& state) {
   CableSample s;
   const Index base = cable.first_coordinate + 6 * element;
   s.e = state.q.segment<12>(base);
@@ -109,21 +114,24 @@ Aabb inflated(Aabb box, double margin) {
   return box;
 }
 
-void visit_cable_shape(const Model& model, const SystemState& state, Workspace& ws, ContactVisit how,
-                       Index pair, ContactSink& sink) {
+void visit_cable_shape(const Model& model, const SystemState& state, Workspace& ws,
+                       ContactVisit how, Index pair, ContactSink& sink) {
   const CableShapeContactData& c = model.cable_shape_contacts()[pair];
   const ContactShapeData& shape = model.shapes()[c.shape];
   const CableData& cable = model.cables()[c.cable];
   const ShapeOwnerPose pose = owner_pose(shape, state, ws.frames_at(model, state.t));
   const ShapeBroadPhase broad(shape.shape, pose);
   // Whole-cable test first: a pair that cannot touch costs O(1) beyond the box refresh.
-  if (!how.all_samples && !broad.may_touch(inflated(ws.cable_boxes[c.cable], cable.section.radius))) return;
-  const std::vector<Aabb>* boxes = how.all_samples ? nullptr : &element_boxes_of(model, state, ws, c.cable);
+  if (!how.all_samples && !broad.may_touch(inflated(ws.cable_boxes[c.cable], cable.section.radius)))
+    return;
+  const std::vector<Aabb>* boxes =
+      how.all_samples ? nullptr : &element_boxes_of(model, state, ws, c.cable);
   ContactSampleBlocks blocks;
   blocks.pair = pair;
   blocks.cable = c.cable;
   const bool body = shape.owner == ContactShapeData::Owner::body;
-  if (body) blocks.first_b = shape.body_coordinate, blocks.bb = &model.body_slots(shape.owner_index);
+  if (body)
+    blocks.first_b = shape.body_coordinate, blocks.bb = &model.body_slots(shape.owner_index);
   for (Index local = 0; local < c.count; ++local) {
     const Index j = c.first + local;
     if (!how.all_samples && !broad.may_touch(inflated((*boxes)[j], cable.section.radius))) continue;
@@ -133,22 +141,27 @@ void visit_cable_shape(const Model& model, const SystemState& state, Workspace& 
     for (int k = 0; k < c.samples; ++k) {
       const CableSample s = sample_of(cable, j, k, c.samples, state);
       ++ws.narrow_phase_samples;
-      if (evaluate_cable_shape_contact(c.law, shape.shape, pose, s, how.jacobians, ws.contact) || how.all_samples)
+      if (evaluate_cable_shape_contact(c.law, shape.shape, pose, s, how.jacobians, ws.contact) ||
+          how.all_samples)
         sink.add(ws.contact, blocks);
     }
   }
 }
 
-void visit_cable_cable(const Model& model, const SystemState& state, Workspace& ws, ContactVisit how,
-                       Index pair, ContactSink& sink) {
+void visit_cable_cable(const Model& model, const SystemState& state, Workspace& ws,
+                       ContactVisit how, Index pair, ContactSink& sink) {
   const CableCableContactData& c = model.cable_cable_contacts()[pair];
   const CableData& a = model.cables()[c.cable_a];
   const CableData& b = model.cables()[c.cable_b];
   const double reach = a.section.radius + b.section.radius;
   const Index nb = c.count_b;
-  if (!how.all_samples && !inflated(ws.cable_boxes[c.cable_a], reach).overlaps(ws.cable_boxes[c.cable_b])) return;
-  const std::vector<Aabb>* boxes_a = how.all_samples ? nullptr : &element_boxes_of(model, state, ws, c.cable_a);
-  const std::vector<Aabb>* boxes_b = how.all_samples ? nullptr : &element_boxes_of(model, state, ws, c.cable_b);
+  if (!how.all_samples &&
+      !inflated(ws.cable_boxes[c.cable_a], reach).overlaps(ws.cable_boxes[c.cable_b]))
+    return;
+  const std::vector<Aabb>* boxes_a =
+      how.all_samples ? nullptr : &element_boxes_of(model, state, ws, c.cable_a);
+  const std::vector<Aabb>* boxes_b =
+      how.all_samples ? nullptr : &element_boxes_of(model, state, ws, c.cable_b);
 
   ContactSampleBlocks blocks;
   blocks.pair = static_cast<Index>(model.cable_shape_contacts().size()) + pair;
@@ -180,8 +193,8 @@ void visit_cable_cable(const Model& model, const SystemState& state, Workspace& 
       Index best_local = -1;
       for (const Index lj : ws.candidates) {
         const Index j = c.first_b + lj;
-        const ElementProjection p = project_onto_element(state.q.segment<12>(b.first_coordinate + 6 * j),
-                                                         b.elements[j].length, x);
+        const ElementProjection p = project_onto_element(
+            state.q.segment<12>(b.first_coordinate + 6 * j), b.elements[j].length, x);
         if (p.distance < best.distance) best = p, best_local = lj;
       }
       if (!how.all_samples && best.distance >= reach) continue;
@@ -192,8 +205,8 @@ void visit_cable_cable(const Model& model, const SystemState& state, Workspace& 
       blocks.ab = &c.ab[li * nb + best_local];
       blocks.ba = &c.ba[li * nb + best_local];
       if (evaluate_cable_cable_contact(c.law, s, state.q.segment<12>(eb), state.v.segment<12>(eb),
-                                       b.elements[best_j].length, b.section.radius, best.xi, how.jacobians,
-                                       ws.contact) ||
+                                       b.elements[best_j].length, b.section.radius, best.xi,
+                                       how.jacobians, ws.contact) ||
           how.all_samples)
         sink.add(ws.contact, blocks);
     }

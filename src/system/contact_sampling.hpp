@@ -14,7 +14,7 @@ namespace ancf::detail {
 /// nullptr when first_b = −1).
 struct ContactSampleBlocks {
   Index pair = 0;
-  Index cable = 0;   ///< cable of side a
+  Index cable = 0;  ///< cable of side a
   Index first_a = 0, first_b = -1;
   const BlockSlots* aa = nullptr;
   const BlockSlots* ab = nullptr;

@@ -43,7 +43,8 @@ const std::string& Model::contact_pair_name(Index pair) const {
   const auto n_shape = static_cast<Index>(cable_shape_contacts_.size());
   if (pair < 0 || pair >= contact_pair_count())
     throw ModelError("no contact pair with index " + std::to_string(pair));
-  return pair < n_shape ? cable_shape_contacts_[pair].name : cable_cable_contacts_[pair - n_shape].name;
+  return pair < n_shape ? cable_shape_contacts_[pair].name
+                        : cable_cable_contacts_[pair - n_shape].name;
 }
 
 Index Model::find_constraint(const std::string& name) const {

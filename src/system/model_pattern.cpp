@@ -83,7 +83,8 @@ void visit_contact_blocks(Model& m, std::vector<CableShapeContactData>& shape_pa
     c.ba.resize(na * nb);
     for (Index i = 0; i < na; ++i)
       for (Index j = 0; j < nb; ++j) {
-        const Index ea = a.first_coordinate + 6 * (c.first_a + i), eb = b.first_coordinate + 6 * (c.first_b + j);
+        const Index ea = a.first_coordinate + 6 * (c.first_a + i),
+                    eb = b.first_coordinate + 6 * (c.first_b + j);
         visit(ea, eb, c.ab[i * nb + j]);
         visit(eb, ea, c.ba[i * nb + j]);
       }
@@ -97,9 +98,11 @@ void ModelBuilder::build_pattern_and_slots(Model& m) {
   p = SparsityPattern(m.system_size());
   auto add = [&](Index r, Index c) { p.add(r, c); };
   for (const CableData& c : m.cables_)
-    for (Index j = 0; j < static_cast<Index>(c.elements.size()); ++j) visit_cable_block(c.first_coordinate + 6 * j, add);
+    for (Index j = 0; j < static_cast<Index>(c.elements.size()); ++j)
+      visit_cable_block(c.first_coordinate + 6 * j, add);
   for (const BodyData& b : m.bodies_) visit_cable_block(b.first_coordinate, add);  // 12×12 as well
-  for (Index r = 0; r < m.multiplier_count(); ++r) visit_row(m.n_coordinates_ + r, m.rows_[r], add, add);
+  for (Index r = 0; r < m.multiplier_count(); ++r)
+    visit_row(m.n_coordinates_ + r, m.rows_[r], add, add);
   declare_forces(m.springs_, p);
   // Point forces do not depend on q or v: no matrix entries.
   declare_forces(m.torques_, p);
@@ -113,7 +116,8 @@ void ModelBuilder::build_pattern_and_slots(Model& m) {
     for (Index j = 0; j < static_cast<Index>(c.elements.size()); ++j) {
       std::array<Index, 144> s{};
       int k = 0;
-      visit_cable_block(c.first_coordinate + 6 * j, [&](Index r, Index col) { s[k++] = p.slot(r, col); });
+      visit_cable_block(c.first_coordinate + 6 * j,
+                        [&](Index r, Index col) { s[k++] = p.slot(r, col); });
       m.element_slots_.push_back(s);
     }
   }
@@ -126,9 +130,10 @@ void ModelBuilder::build_pattern_and_slots(Model& m) {
   m.row_slot_offset_.assign(1, 0);
   m.geometric_slot_offset_.assign(1, 0);
   for (Index r = 0; r < m.multiplier_count(); ++r) {
-    visit_row(m.n_coordinates_ + r, m.rows_[r],
-              [&](Index i, Index j) { m.row_slots_.push_back(p.slot(i, j)); },
-              [&](Index i, Index j) { m.geometric_slots_.push_back(p.slot(i, j)); });
+    visit_row(
+        m.n_coordinates_ + r, m.rows_[r],
+        [&](Index i, Index j) { m.row_slots_.push_back(p.slot(i, j)); },
+        [&](Index i, Index j) { m.geometric_slots_.push_back(p.slot(i, j)); });
     m.row_slot_offset_.push_back(static_cast<Index>(m.row_slots_.size()));
     m.geometric_slot_offset_.push_back(static_cast<Index>(m.geometric_slots_.size()));
   }
@@ -138,7 +143,8 @@ void ModelBuilder::build_pattern_and_slots(Model& m) {
   visit_contact_blocks(m, m.cable_shape_contacts_, m.cable_cable_contacts_,
                        [&](Index rb, Index cb, BlockSlots& out) {
                          int k = 0;
-                         visit_coupling_block(rb, cb, [&](Index r, Index col) { out[k++] = p.slot(r, col); });
+                         visit_coupling_block(
+                             rb, cb, [&](Index r, Index col) { out[k++] = p.slot(r, col); });
                        });
 }
 

@@ -5,7 +5,8 @@
 // ([e] or [e; q_body] or [e_a; e_b]):
 //   x   = S(ξ) e                       sample point on the cable centreline
 //   x_o = material point of the other side that currently coincides with (or is closest to) x:
-//         body: r_O + Σ y_k a_k with y_k = a_k·(x − r_O);  cable b: S(ξ_b) e_b at its projection ξ_b
+//         body: r_O + Σ y_k a_k with y_k = a_k·(x − r_O);  cable b: S(ξ_b) e_b at its projection
+//         ξ_b
 //   g   = signed distance − radii,  n = unit normal (towards the cable point)
 //   v_rel = G V = ẋ − ẋ_o  (G = ∂(x − x_o)/∂P with the material points held fixed)
 //   F   = f_n n + f_t       (contact_law.hpp) per unit length, times the sample's length weight w
@@ -46,9 +47,9 @@ struct ShapeOwnerPose {
 struct ContactSampleResult {
   using Vec24 = Eigen::Matrix<double, 24, 1>;
   using Mat24 = Eigen::Matrix<double, 24, 24>;
-  bool active = false;  ///< g < 0
-  double gap = 0.0;     ///< g [m] (set also when inactive)
-  double xi_other = 0.0;  ///< ξ_b (cable–cable only)
+  bool active = false;        ///< g < 0
+  double gap = 0.0;           ///< g [m] (set also when inactive)
+  double xi_other = 0.0;      ///< ξ_b (cable–cable only)
   Vec3 point = Vec3::Zero();  ///< x [m]
   Vec3 normal = Vec3::Zero();
   Vec3 normal_force = Vec3::Zero();    ///< w f_n n [N] on the cable

@@ -17,8 +17,8 @@ struct SphereShape {
   double radius = 0.0;
 };
 
-/// Solid cylinder with flat caps: centre c̄ [m], unit axis ū, radius R [m] > 0, half-length H [m] > 0
-/// (caps at c̄ ± H ū).
+/// Solid cylinder with flat caps: centre c̄ [m], unit axis ū, radius R [m] > 0, half-length H [m] >
+/// 0 (caps at c̄ ± H ū).
 struct CappedCylinderShape {
   Vec3 centre = Vec3::Zero();
   Vec3 axis = Vec3::UnitZ();
@@ -56,8 +56,14 @@ void validate_shape(const ContactShape& shape, const std::string& owner);
 struct Aabb {
   Vec3 lower = Vec3::Constant(std::numeric_limits<double>::infinity());
   Vec3 upper = Vec3::Constant(-std::numeric_limits<double>::infinity());
-  void extend(const Vec3& p) { lower = lower.cwiseMin(p); upper = upper.cwiseMax(p); }
-  void inflate(double margin) { lower.array() -= margin; upper.array() += margin; }
+  void extend(const Vec3& p) {
+    lower = lower.cwiseMin(p);
+    upper = upper.cwiseMax(p);
+  }
+  void inflate(double margin) {
+    lower.array() -= margin;
+    upper.array() += margin;
+  }
   [[nodiscard]] bool overlaps(const Aabb& o) const {
     return (lower.array() <= o.upper.array()).all() && (o.lower.array() <= upper.array()).all();
   }
@@ -66,9 +72,12 @@ struct Aabb {
 /// Conservative global box of the shape placed at origin r_O with rotation A (columns a_k; need
 /// not be orthonormal during Newton iterations: the box is then of the affine image). A plane has
 /// no finite box: use `may_touch_plane` instead.
-[[nodiscard]] Aabb shape_bounding_box(const SphereShape& s, const Vec3& origin, const Mat3& rotation);
-[[nodiscard]] Aabb shape_bounding_box(const CappedCylinderShape& s, const Vec3& origin, const Mat3& rotation);
+[[nodiscard]] Aabb shape_bounding_box(const SphereShape& s, const Vec3& origin,
+                                      const Mat3& rotation);
+[[nodiscard]] Aabb shape_bounding_box(const CappedCylinderShape& s, const Vec3& origin,
+                                      const Mat3& rotation);
 /// True unless every corner of `box` lies strictly outside the plane (global placement as above).
-[[nodiscard]] bool may_touch_plane(const PlaneShape& s, const Vec3& origin, const Mat3& rotation, const Aabb& box);
+[[nodiscard]] bool may_touch_plane(const PlaneShape& s, const Vec3& origin, const Mat3& rotation,
+                                   const Aabb& box);
 
 }  // namespace ancf

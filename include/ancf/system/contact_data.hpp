@@ -18,8 +18,8 @@ struct ContactShapeData {
   std::string name;
   ContactShape shape;
   Owner owner = Owner::ground;
-  Index owner_index = -1;       ///< driven-frame or body index (not used for ground)
-  Index body_coordinate = -1;   ///< first coordinate of the owning body (Owner::body)
+  Index owner_index = -1;      ///< driven-frame or body index (not used for ground)
+  Index body_coordinate = -1;  ///< first coordinate of the owning body (Owner::body)
 };
 
 /// Elements [first, first + count) of a cable that a contact pair samples (count < 0: to the end).

@@ -12,7 +12,7 @@
 namespace ancf {
 
 struct ContactPairState {
-  bool active = false;       ///< at least one sample penetrates (g < 0)
+  bool active = false;  ///< at least one sample penetrates (g < 0)
   int active_samples = 0;
   double min_gap = std::numeric_limits<double>::infinity();  ///< min over all samples [m]
   Vec3 normal_force = Vec3::Zero();    ///< Σ w f_n n on the pair's (first) cable [N]
@@ -30,7 +30,8 @@ class ContactMonitor {
  public:
   explicit ContactMonitor(const Model& model);
   /// Evaluate the pair states at `state` and record first-contact times.
-  std::span<const ContactPairState> update(const Model& model, const SystemState& state, Workspace& ws);
+  std::span<const ContactPairState> update(const Model& model, const SystemState& state,
+                                           Workspace& ws);
   [[nodiscard]] std::span<const ContactPairState> states() const { return states_; }
   /// First time the pair / any pair involving the cable was active; NaN if never.
   [[nodiscard]] double first_contact_of_pair(Index pair) const { return pair_first_[pair]; }

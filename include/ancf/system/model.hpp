@@ -68,14 +68,26 @@ class Model {
   [[nodiscard]] const std::vector<DrivenFrame>& frames() const { return frames_; }
   [[nodiscard]] const std::vector<ConstraintData>& constraints() const { return constraints_; }
   [[nodiscard]] const std::vector<DotConstraintRow>& rows() const { return rows_; }
-  [[nodiscard]] const std::vector<ForceElementData<SpringDamper>>& spring_dampers() const { return springs_; }
-  [[nodiscard]] const std::vector<ForceElementData<PointForce>>& point_forces() const { return point_forces_; }
-  [[nodiscard]] const std::vector<ForceElementData<BodyTorque>>& body_torques() const { return torques_; }
-  [[nodiscard]] const std::vector<ForceElementData<RevoluteDrive>>& drives() const { return drives_; }
+  [[nodiscard]] const std::vector<ForceElementData<SpringDamper>>& spring_dampers() const {
+    return springs_;
+  }
+  [[nodiscard]] const std::vector<ForceElementData<PointForce>>& point_forces() const {
+    return point_forces_;
+  }
+  [[nodiscard]] const std::vector<ForceElementData<BodyTorque>>& body_torques() const {
+    return torques_;
+  }
+  [[nodiscard]] const std::vector<ForceElementData<RevoluteDrive>>& drives() const {
+    return drives_;
+  }
 
   [[nodiscard]] const std::vector<ContactShapeData>& shapes() const { return shapes_; }
-  [[nodiscard]] const std::vector<CableShapeContactData>& cable_shape_contacts() const { return cable_shape_contacts_; }
-  [[nodiscard]] const std::vector<CableCableContactData>& cable_cable_contacts() const { return cable_cable_contacts_; }
+  [[nodiscard]] const std::vector<CableShapeContactData>& cable_shape_contacts() const {
+    return cable_shape_contacts_;
+  }
+  [[nodiscard]] const std::vector<CableCableContactData>& cable_cable_contacts() const {
+    return cable_cable_contacts_;
+  }
   /// Contact pairs are numbered cable–shape pairs first, then cable–cable pairs.
   [[nodiscard]] Index contact_pair_count() const {
     return static_cast<Index>(cable_shape_contacts_.size() + cable_cable_contacts_.size());
@@ -94,7 +106,9 @@ class Model {
     return element_slots_[element_slot_offset_[cable] + element];
   }
   /// Value slots of body b's 12×12 block, column-major.
-  [[nodiscard]] const std::array<Index, 144>& body_slots(Index body) const { return body_slots_[body]; }
+  [[nodiscard]] const std::array<Index, 144>& body_slots(Index body) const {
+    return body_slots_[body];
+  }
 
   /// Slots of row r (0-based among the multipliers): for each term of u then of w, 3 slots of
   /// Φ_q followed by 3 slots of Φ_qᵀ, starting at row_slot_offset(r).
