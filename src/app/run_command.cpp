@@ -10,10 +10,7 @@
 #include <sstream>
 
 #include "ancf/io/run_metadata.hpp"
-#include "ancf/solvers/generalized_alpha.hpp"
-#include "ancf/solvers/ida_integrator.hpp"
-#include "ancf/system/ggl_problem.hpp"
-#include "ancf/system/multibody_problem.hpp"
+#include "ancf/io/simulation.hpp"
 #include "commands.hpp"
 #include "progress_bar.hpp"
 #include "run_outputs.hpp"
@@ -26,16 +23,7 @@ namespace ancf::app {
 
 namespace {
 
-using Counters = std::vector<std::pair<std::string, long>>;
-
-/// Output times interval, 2·interval, … and t_end (t = 0 is recorded before integrating).
-std::vector<double> output_times(double interval, double t_end) {
-  std::vector<double> t;
-  for (long k = 1; k * interval < t_end * (1.0 - 1e-12); ++k)
-    t.push_back(static_cast<double>(k) * interval);
-  t.push_back(t_end);
-  return t;
-}
+using Counters = SimulationCounters;
 
 void apply_overrides(const RunOptions& o, IntegratorSettings& s) {
   if (o.integrator == "ida") s.kind = IntegratorKind::ida;
@@ -43,102 +31,6 @@ void apply_overrides(const RunOptions& o, IntegratorSettings& s) {
   if (o.rtol > 0.0) s.rtol = o.rtol;
   if (o.t_end > 0.0) s.t_end = o.t_end;
   if (o.step > 0.0) (s.kind == IntegratorKind::ida ? s.max_step : s.step) = o.step;
-}
-
-Counters run_ida(const Scene& scene, RunOutputs& out, ProgressBar& bar) {
-  const IntegratorSettings& s = scene.integrator;
-  GglProblem problem(scene.model);
-  IdaOptions o;
-  o.rtol = s.rtol;
-  o.atol_position = s.ida_atol_position;
-  o.atol_velocity = s.ida_atol_velocity;
-  o.atol_multiplier = s.ida_atol_multiplier;
-  o.max_step = s.max_step;
-  o.max_order = s.max_order;
-  o.output_times = output_times(scene.output.interval, s.t_end);
-  o.stop_time = s.t_end;
-  IdaIntegrator ida(problem, o);
-  SystemState state = SystemState::initial(scene.model);
-  problem.unpack(0.0, ida.y(), ida.yp(), state);  // consistent initial values
-  out.record(state);
-  Counters c;
-  auto counters = [&] {
-    const IdaStatistics st = ida.statistics();
-    c = {{"steps", st.steps},
-         {"residual evaluations", st.residual_evaluations},
-         {"Jacobian evaluations", st.jacobian_evaluations},
-         {"linear solver setups", st.linear_solver_setups},
-         {"Newton iterations", st.nonlinear_iterations},
-         {"error test failures", st.error_test_failures},
-         {"convergence failures", st.convergence_failures},
-         {"KLU re-pivotings", st.klu_repivots}};
-  };
-  try {
-    ida.run([&](double t, std::span<const double> y, std::span<const double> yp) {
-      problem.unpack(t, y, yp, state);
-      out.record(state);
-      bar.update(t);
-    });
-  } catch (...) {
-    counters();
-    throw;
-  }
-  counters();
-  return c;
-}
-
-Counters run_genalpha(const Scene& scene, RunOutputs& out, ProgressBar& bar, Counters& partial) {
-  const IntegratorSettings& s = scene.integrator;
-  MultibodyProblem problem(scene.model);
-  GeneralizedAlphaOptions o;
-  o.step_size = s.step;
-  o.rho_infinity = s.rho_infinity;
-  o.formulation = s.stabilized_index2 ? GeneralizedAlphaFormulation::stabilized_index2
-                                      : GeneralizedAlphaFormulation::index3;
-  o.start =
-      s.perturbed_start ? GeneralizedAlphaStart::perturbed : GeneralizedAlphaStart::consistent;
-  o.rtol = s.rtol;
-  o.atol_position = s.ga_atol_position;
-  o.atol_velocity = s.ga_atol_velocity;
-  o.atol_multiplier = s.ga_atol_multiplier;
-  GeneralizedAlphaStepper ga(problem, o);
-  SystemState state = SystemState::initial(scene.model);
-  auto snapshot = [&] {
-    state.t = ga.time();
-    state.q = ga.positions();
-    state.v = ga.velocities();
-    state.a = ga.accelerations();
-    state.lambda = ga.multipliers();
-    out.record(state);
-  };
-  auto counters = [&] {
-    const GeneralizedAlphaStatistics& st = ga.statistics();
-    partial = {{"steps", st.steps},
-               {"Newton iterations", st.newton_iterations},
-               {"residual evaluations", st.residual_evaluations},
-               {"matrix evaluations", st.matrix_evaluations},
-               {"factorizations", st.factorizations},
-               {"convergence failures", st.convergence_failures},
-               {"step halvings", st.step_halvings},
-               {"restarts", st.restarts}};
-  };
-  ga.initialize(0.0);
-  snapshot();
-  try {
-    // Step by step (not advance_to) so that the progress bar moves within an output interval.
-    for (double t_out : output_times(scene.output.interval, s.t_end)) {
-      while (ga.time() < t_out) {
-        ga.step(t_out);
-        bar.update(ga.time());
-      }
-      snapshot();
-    }
-  } catch (...) {
-    counters();
-    throw;
-  }
-  counters();
-  return partial;
 }
 
 std::string read_file(const std::string& path) {
@@ -173,7 +65,10 @@ int run_command(const RunOptions& options) {
     out.emplace(scene, options.out_dir);
     ProgressBar bar(s.t_end, options.progress || isatty(fileno(stderr)));
     try {
-      counters = ida ? run_ida(scene, *out, bar) : run_genalpha(scene, *out, bar, counters);
+      SimulationHooks hooks;
+      hooks.output = [&](const SystemState& state) { out->record(state); };
+      hooks.progress = [&](double t) { bar.update(t); };
+      simulate(scene.model, s, output_times(scene.output.interval, s.t_end), hooks, counters);
     } catch (...) {
       bar.finish();
       throw;

@@ -359,6 +359,11 @@ Momentum momentum(const Model& model, const VecX& q, const VecX& v) {
   return p;
 }
 
+DriveState drive_state(const Model& model, const SystemState& state, Index drive, Workspace& ws) {
+  const auto& d = model.drives().at(static_cast<std::size_t>(drive));
+  return evaluate(d.element, as_span(state.q), as_span(state.v), state.t, ws.force);
+}
+
 ConstraintViolation constraint_violation(const Model& model, const SystemState& state,
                                          Workspace& ws) {
   ConstraintViolation cv;

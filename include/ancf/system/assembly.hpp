@@ -111,6 +111,11 @@ struct ConstraintViolation {
 [[nodiscard]] ConstraintViolation constraint_violation(const Model& model, const SystemState& state,
                                                        Workspace& ws);
 
+/// Angle θ [rad], rate [rad/s] and applied torque τ [N m] of drive `drive` (Model::drives()
+/// order) at `state` (the same evaluation the residual uses).
+[[nodiscard]] DriveState drive_state(const Model& model, const SystemState& state, Index drive,
+                                     Workspace& ws);
+
 // Convenience overloads that allocate a workspace (not for time-stepping loops).
 void assemble_iteration_matrix(const Model& model, const SystemState& state,
                                const IterationWeights& weights, std::span<double> values);
