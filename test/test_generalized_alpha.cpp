@@ -647,6 +647,27 @@ TEST(GeneralizedAlpha, OutputTimesOffTheStepGridKeepSecondOrder) {
   }
 }
 
+// Output times a hair more than one step apart (dt = h(1 + 1e-6), as t drifts against an output
+// grid after halvings): the stepper must not leave a sliver of 1e-6 h before each output (a
+// restart at a tiny h puts round-off amplified by h⁻² into the index-3 multipliers), but take two
+// equal steps of dt/2.
+TEST(GeneralizedAlpha, NoSliverStepsBeforeOutputTimes) {
+  const Model model = rigid_pendulum_model({});
+  MultibodyProblem problem(model);
+  const double h = 0.01;
+  GeneralizedAlphaStepper stepper(problem, tight(h, 0.8));
+  stepper.initialize(0.0);
+  const double dt = h * (1.0 + 1e-6);
+  for (int i = 1; i <= 20; ++i) {
+    stepper.advance_to(i * dt);
+    EXPECT_EQ(stepper.time(), i * dt);
+  }
+  std::printf("outputs every h(1 + 1e-6): %ld steps, smallest step %.6e (h = %.2e)\n",
+              stepper.statistics().steps, stepper.statistics().min_step, h);
+  EXPECT_GE(stepper.statistics().min_step, 0.5 * h);
+  EXPECT_EQ(stepper.statistics().steps, 40);
+}
+
 // --- agreement with IDA
 // ---------------------------------------------------------------------------
 

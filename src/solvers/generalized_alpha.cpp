@@ -422,9 +422,13 @@ void GeneralizedAlphaStepper::step(double t_limit) {
   bool retried_stale = false;
   for (;;) {
     // Snap to t_limit when it is within round-off of one step, so output times are hit exactly
-    // (keeping h_ itself then, so the factorization stays valid).
-    const bool last = remaining <= h_ * (1.0 + 1e-8);
-    const double h = std::abs(remaining - h_) <= 1e-8 * h_ ? h_ : std::min(h_, remaining);
+    // (keeping h_ itself then, so the factorization stays valid). When t_limit is more than one
+    // but less than 1.5 steps away, take two equal steps of remaining/2 instead of h_ and a
+    // sliver: a sliver (t drifts against the output grid after halvings) restarts the scheme at
+    // a tiny h, where the index-3 multipliers carry round-off amplified by h⁻² and Newton fails.
+    const bool snap = std::abs(remaining - h_) <= 1e-8 * h_;
+    const double h = snap ? h_ : remaining < h_ ? remaining : remaining < 1.5 * h_ ? 0.5 * remaining : h_;
+    const bool last = snap || h == remaining;
     change_step_size(h);
     const double t1 = last ? t_limit : t_ + h;
     predict(h);
@@ -450,7 +454,11 @@ void GeneralizedAlphaStepper::step(double t_limit) {
           (step_max_rate_ > options_.max_reuse_rate || matrix_age_ >= options_.max_matrix_age))
         matrix_stale_ = true;
       if (h_ < options_.step_size && ++steps_since_halving_ >= options_.recovery_steps) {
-        h_ = std::min(2.0 * h_, options_.step_size);
+        // Back up the ladder step_size·2⁻ᵏ (the largest rung ≤ 2h_): a halving of a shortened
+        // step leaves h_ off the ladder, and doubling it would keep it off (and t off the grid).
+        double rung = options_.step_size;
+        while (rung > 2.0 * h_ * (1.0 + 1e-12)) rung *= 0.5;
+        h_ = rung;
         steps_since_halving_ = 0;
       }
       break;
