@@ -3,9 +3,11 @@
 //
 // Usage: ancf-capture [--scene studies/scenes/capture.toml] [--integrator genalpha|ida]
 //                     [--elements N] [--t-end T] [--omega-max DEG_PER_S] [--tilt DEG]
-//                     [--friction MU] [--step H] [--rtol R] [--free-pole] [--out DIR]
+//                     [--friction MU] [--regularization-speed V] [--step H] [--rtol R] [--rho-inf R] [--axial-damping C]
+//                     [--bending EI] [--no-rope-rope] [--index2] [--free-pole] [--out DIR]
 // Overrides change the scene's TOML before it is built (element counts, and the rope–rope
-// candidate ranges with them; drive ω_max; pole tilt; friction of every pair; integrator), so
+// candidate ranges with them; drive ω_max; pole tilt; friction of every pair; rope damping and
+// bending; rope–rope pairs off; integrator), so
 // the mesh check and the calibration run exactly the scene file otherwise.
 // Writes into DIR (default out/capture-<integrator>): samples.csv (one row per output time),
 // snapshots.csv (node positions of the ropes and the pole axis at t = 0, the event times and the
@@ -38,7 +40,8 @@ struct Options {
   std::string scene = "studies/scenes/capture.toml", integrator = "genalpha", out;
   long elements = 0;  // 0: as in the scene
   double t_end = 0.0, omega_max_deg = 0.0, tilt_deg = -1.0, friction = -1.0, step = 0.0, rtol = 0.0;
-  bool free_pole = false;
+  double regularization_speed = 0.0, rho_infinity = -1.0, axial_damping = -1.0, bending_stiffness = -1.0;
+  bool free_pole = false, rope_rope = true, index2 = false;
 };
 
 Options parse(int argc, char** argv) {
@@ -58,7 +61,13 @@ Options parse(int argc, char** argv) {
     else if (a == "--friction") o.friction = std::stod(value());
     else if (a == "--step") o.step = std::stod(value());
     else if (a == "--rtol") o.rtol = std::stod(value());
+    else if (a == "--regularization-speed") o.regularization_speed = std::stod(value());
+    else if (a == "--rho-inf") o.rho_infinity = std::stod(value());
+    else if (a == "--axial-damping") o.axial_damping = std::stod(value());
+    else if (a == "--bending") o.bending_stiffness = std::stod(value());
     else if (a == "--free-pole") o.free_pole = true;
+    else if (a == "--index2") o.index2 = true;
+    else if (a == "--no-rope-rope") o.rope_rope = false;
     else if (a == "--out") o.out = value();
     else throw std::invalid_argument("unknown option " + a);
   }
@@ -89,9 +98,25 @@ std::string apply_overrides(const Options& o) {
       t.insert_or_assign("other_elements", range);
     }
   }
-  if (o.friction >= 0.0)
-    for (toml::node& c : *root["contact"].as_array())
-      c.as_table()->at("law").as_table()->insert_or_assign("friction", o.friction);
+  if (o.axial_damping >= 0.0 || o.bending_stiffness >= 0.0)
+    for (toml::node& c : *root["cable"].as_array()) {
+      toml::table& section = *c.as_table()->at("section").as_table();
+      if (o.axial_damping >= 0.0) section.insert_or_assign("axial_damping", o.axial_damping);
+      if (o.bending_stiffness > 0.0) {
+        section.insert_or_assign("bending", true);
+        section.insert_or_assign("EI", o.bending_stiffness);
+      }
+    }
+  if (!o.rope_rope) {
+    toml::array& contacts = *root["contact"].as_array();
+    for (std::size_t k = contacts.size(); k-- > 0;)
+      if (contacts[k].as_table()->contains("other_cable")) contacts.erase(contacts.begin() + static_cast<long>(k));
+  }
+  for (toml::node& c : *root["contact"].as_array()) {
+    toml::table& law = *c.as_table()->at("law").as_table();
+    if (o.friction >= 0.0) law.insert_or_assign("friction", o.friction);
+    if (o.regularization_speed > 0.0) law.insert_or_assign("regularization_speed", o.regularization_speed);
+  }
   if (o.omega_max_deg > 0.0)
     find_named(root, "drive", "ring drive")->at("reference").as_table()->insert_or_assign("max_rate",
                                                                                          o.omega_max_deg * kDeg);
@@ -109,6 +134,14 @@ std::string apply_overrides(const Options& o) {
   integrator.insert_or_assign("method", o.integrator);
   if (o.t_end > 0.0) integrator.insert_or_assign("t_end", o.t_end);
   if (o.rtol > 0.0) integrator.insert_or_assign("rtol", o.rtol);
+  if (o.index2) {
+    if (!integrator.contains("genalpha")) integrator.insert_or_assign("genalpha", toml::table{});
+    integrator.at("genalpha").as_table()->insert_or_assign("formulation", "stabilized_index2");
+  }
+  if (o.rho_infinity >= 0.0) {
+    if (!integrator.contains("genalpha")) integrator.insert_or_assign("genalpha", toml::table{});
+    integrator.at("genalpha").as_table()->insert_or_assign("rho_infinity", o.rho_infinity);
+  }
   if (o.step > 0.0) {
     const char* group = o.integrator == "ida" ? "ida" : "genalpha";
     if (!integrator.contains(group)) integrator.insert_or_assign(group, toml::table{});

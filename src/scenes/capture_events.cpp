@@ -59,7 +59,8 @@ CaptureObserver::CaptureObserver(const Model& model)
                       find_pair(model, CaptureNames::pole_pair(i, "knob"))};
     const Index c = model.find_constraint(CaptureNames::ring_end(i));
     if (c < 0) throw ModelError("capture observer: no constraint '" + CaptureNames::ring_end(i) + "'");
-    ring_end_rows_[i] = model.constraints()[c].first_row;
+    // first_row counts system rows (coordinates first); λ is indexed from the first constraint row.
+    ring_end_rows_[i] = model.constraints()[c].first_row - model.coordinate_count();
   }
   for (Index p = static_cast<Index>(model.cable_shape_contacts().size()); p < model.contact_pair_count(); ++p)
     rope_pairs_.push_back(p);

@@ -1,0 +1,120 @@
+#!/usr/bin/python3
+"""Figures of the capture example from the outputs of ancf-capture (studies/capture_study.cpp).
+
+Usage: scripts/plot_capture.py DIR [DIR2 ...]
+  DIR/samples.csv   -> DIR/capture_tilt.png, DIR/capture_drive.png, DIR/capture_contact.png
+  DIR/snapshots.csv -> DIR/capture_snapshots.png (the mechanism at t = 0, the events, the end)
+With several DIRs (e.g. both integrators) the time series are overlaid in the first DIR's figures
+as well, labelled by the directory names.
+Uses Debian's matplotlib (/usr/bin/python3) with the Agg backend; no numpy needed.
+"""
+import csv
+import math
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def read_columns(path):
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    return {k: [float(r[k]) for r in rows] for k in rows[0]} if rows else {}
+
+
+def time_series(dirs):
+    data = [(os.path.basename(os.path.normpath(d)), read_columns(os.path.join(d, "samples.csv"))) for d in dirs]
+    out = dirs[0]
+
+    fig, ax = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
+    for name, c in data:
+        ax[0].plot(c["t"], c["tilt_deg"], label=name)
+        ax[1].plot(c["t"], c["lateral_offset_mm"], label=name)
+    ax[0].axhline(0.3, color="grey", ls=":", lw=1)
+    ax[0].set_ylabel("pole tilt [deg]")
+    ax[1].set_ylabel("axis offset at z = h/2 [mm]")
+    ax[1].set_xlabel("t [s]")
+    ax[0].legend()
+    fig.suptitle("Capture: pole alignment")
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "capture_tilt.png"), dpi=120)
+    plt.close(fig)
+
+    fig, ax = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
+    for name, c in data:
+        ax[0].plot(c["t"], c["drive_torque"], label=name)
+        ax[1].plot(c["t"], c["ring_angle_deg"], label=name)
+    ax[0].axhline(0.95 * 6.0, color="grey", ls=":", lw=1)
+    ax[0].set_ylabel("drive torque [N m]")
+    ax[1].set_ylabel("ring angle [deg]")
+    ax[1].set_xlabel("t [s]")
+    ax[0].legend()
+    fig.suptitle("Capture: ring drive")
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "capture_drive.png"), dpi=120)
+    plt.close(fig)
+
+    fig, ax = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
+    for name, c in data:
+        for i in (1, 2, 3):
+            ax[0].plot(c["t"], c[f"pole_force_{i}"], label=f"{name} rope {i}", lw=1)
+            ax[1].plot(c["t"], c[f"ring_tension_{i}"], label=f"{name} rope {i}", lw=1)
+    ax[0].set_ylabel("rope-pole normal force [N]")
+    ax[1].set_ylabel("rope end force at ring [N]")
+    ax[1].set_xlabel("t [s]")
+    ax[0].legend(fontsize=7)
+    fig.suptitle("Capture: contact and rope forces")
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "capture_contact.png"), dpi=120)
+    plt.close(fig)
+
+
+def snapshots(d):
+    path = os.path.join(d, "snapshots.csv")
+    groups = {}
+    with open(path, newline="") as f:
+        for r in csv.DictReader(f):
+            groups.setdefault((r["label"], float(r["t"])), []).append((float(r["x"]), float(r["y"]), float(r["z"])))
+    if not groups:
+        return
+    n = len(groups)
+    cols = min(4, n)
+    rows = math.ceil(n / cols)
+    fig = plt.figure(figsize=(4 * cols, 4 * rows))
+    for k, ((label, t), pts) in enumerate(groups.items()):
+        ax = fig.add_subplot(rows, cols, k + 1, projection="3d")
+        ropes = pts[:-2]
+        per = len(ropes) // 3
+        for i in range(3):
+            r = ropes[i * per:(i + 1) * per]
+            ax.plot([p[0] for p in r], [p[1] for p in r], [p[2] for p in r], lw=1.5)
+        root, tip = pts[-2], pts[-1]
+        ax.plot([root[0], tip[0]], [root[1], tip[1]], [root[2], tip[2]], color="k", lw=4)
+        for z in (0.0, 0.15):  # the two rings
+            ax.plot([0.1 * math.cos(a / 20 * math.pi) for a in range(41)],
+                    [0.1 * math.sin(a / 20 * math.pi) for a in range(41)], [z] * 41, color="grey", lw=1)
+        ax.set_xlim(-0.11, 0.11)
+        ax.set_ylim(-0.11, 0.11)
+        ax.set_zlim(-0.08, 0.2)
+        ax.set_title(f"{label}\nt = {t:.2f} s", fontsize=9)
+        ax.set_box_aspect((1, 1, 1.3))
+    fig.tight_layout()
+    fig.savefig(os.path.join(d, "capture_snapshots.png"), dpi=110)
+    plt.close(fig)
+
+
+def main():
+    if len(sys.argv) < 2:
+        sys.exit(__doc__)
+    dirs = sys.argv[1:]
+    time_series(dirs)
+    for d in dirs:
+        snapshots(d)
+    print("figures written to", ", ".join(dirs))
+
+
+if __name__ == "__main__":
+    main()
