@@ -130,7 +130,12 @@ void GglProblem::compute_scales(GglScales given) {
   double load_work = 0.0;
   for (Index i = 0; i < n_; ++i) load_work += std::abs(model_.constant_load()[i]) * scale_[i];
   energy = std::max(energy, load_work);
-  if (energy <= 0.0) energy = 0.5 * mass * big_l * big_l;  // nothing moves: a 1 s time scale
+  // Nothing moves (no loads, at rest, stress-free; motion comes from drives, frames or contact
+  // later): a 1 s time scale. "Nothing" includes the round-off strain energy of a curved
+  // stress-free reference (~1e-25 J), which would otherwise set T ~ 1e12 s and velocity
+  // tolerances no Newton iteration can meet: energies below √ε of ½mL² count as zero.
+  const double resting = 0.5 * mass * big_l * big_l;
+  if (!(energy > std::sqrt(std::numeric_limits<double>::epsilon()) * resting)) energy = resting;
   scales_.energy = given.energy > 0.0 ? given.energy : energy;
   scales_.time = given.time > 0.0
                      ? given.time
