@@ -22,9 +22,12 @@
 #include "ancf/system/assembly.hpp"
 #include "ancf/system/cable_geometry.hpp"
 #include "ancf/system/model_builder.hpp"
+#include "dense_matrix.hpp"
 #include "random_geometry.hpp"
 
 namespace {
+
+using ancf::testing::dense;
 using namespace ancf;
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
@@ -240,14 +243,6 @@ TEST(CableMass, ElementMassMatrixIntegratesCubicsExactly) {
     worst =
         std::max(worst, check_moments(m12, random_cubic(rng, len), rho_a, len, 1, "cubic element"));
   std::printf("element mass moments: max error/tolerance %.2e\n", worst);
-}
-
-MatX dense(const SparsityPattern& p, const std::vector<double>& values) {
-  MatX m = MatX::Zero(p.size(), p.size());
-  for (Index col = 0; col < p.size(); ++col)
-    for (Index k = p.column_start()[col]; k < p.column_start()[col + 1]; ++k)
-      m(p.row_index()[k], col) += values[k];
-  return m;
 }
 
 // The same moments from the global matrix w_a·M of assemble_iteration_matrix({0, 0, 1}) over five

@@ -23,10 +23,13 @@
 #include "ancf/system/model_builder.hpp"
 #include "ancf/system/multibody_problem.hpp"
 #include "ancf/system/static_model_problem.hpp"
+#include "dense_matrix.hpp"
 #include "fd_check.hpp"
 
 namespace ancf {
 namespace {
+
+using testing::dense;
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
@@ -104,15 +107,6 @@ SystemState perturbed_state(const Model& model, unsigned seed) {
   return s;
 }
 
-MatX dense(const Model& model, const VecX& values) {
-  const SparsityPattern& p = model.pattern();
-  MatX m = MatX::Zero(p.size(), p.size());
-  for (Index c = 0; c < p.size(); ++c)
-    for (Index k = p.column_start()[c]; k < p.column_start()[c + 1]; ++k)
-      m(p.row_index()[k], c) = values[k];
-  return m;
-}
-
 TEST(ContactAssembly, EveryPairKindIsInContactInTheTestScene) {
   const Model model = contact_assembly_scene();
   Workspace ws(model);
@@ -142,7 +136,7 @@ TEST(ContactAssembly, IterationMatrixEqualsFiniteDifferencesOfTheResidual) {
     for (int which = 0; which < 2; ++which) {
       const IterationWeights w{which == 0 ? 1.0 : 0.0, which == 1 ? 1.0 : 0.0, 0.0};
       assemble_iteration_matrix(model, s0, w, ws, as_span(values));
-      MatX j = dense(model, values);
+      MatX j = dense(model.pattern(), values);
       if (which == 1) j.bottomRows(m).setZero();
       VecX y(size);
       y << (which == 0 ? s0.q : s0.v), s0.lambda;
@@ -186,10 +180,7 @@ TEST(ContactAssembly, GglJacobianEqualsFiniteDifferences) {
   const SparsityPattern& p = ggl.jacobian_pattern();
   VecX values(p.nonzeros());
   ggl.jacobian(t, as_span(y), as_span(yp), c_j, as_span(values));
-  MatX j = MatX::Zero(size, size);
-  for (Index c = 0; c < size; ++c)
-    for (Index k = p.column_start()[c]; k < p.column_start()[c + 1]; ++k)
-      j(p.row_index()[k], c) = values[k];
+  const MatX j = dense(p, values);
   const VecX y0 = y;
   const fdcheck::Function f = [&](const VecX& x) {
     const VecX xp = yp + c_j * (x - y0);

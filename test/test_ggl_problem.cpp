@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "ancf/system/ggl_problem.hpp"
+#include "dense_matrix.hpp"
 #include "fd_check.hpp"
 #include "multibody_scenes.hpp"
 
@@ -36,16 +37,9 @@ void operator delete(void* p, std::size_t) noexcept {
 namespace ancf {
 namespace {
 
+using testing::dense;
 using testing::JointVariant;
 using testing::multibody_scene;
-
-MatX dense(const SparsityPattern& p, const VecX& values) {
-  MatX m = MatX::Zero(p.size(), p.size());
-  for (Index c = 0; c < p.size(); ++c)
-    for (Index k = p.column_start()[c]; k < p.column_start()[c + 1]; ++k)
-      m(p.row_index()[k], c) = values[k];
-  return m;
-}
 
 // A generic point (t, y, y'): coordinates perturbed off the constraints, random velocities,
 // derivatives and multipliers, μ ≠ 0 so that every block of the Jacobian is exercised.

@@ -8,11 +8,14 @@
 
 #include "ancf/core/error.hpp"
 #include "ancf/system/assembly.hpp"
+#include "dense_matrix.hpp"
 #include "fd_check.hpp"
 #include "multibody_scenes.hpp"
 
 namespace ancf {
 namespace {
+
+using testing::dense;
 
 using testing::JointVariant;
 using testing::multibody_scene;
@@ -34,14 +37,6 @@ SystemState random_state(const Model& model, unsigned seed) {
   return s;
 }
 
-MatX dense(const Model& model, const VecX& values) {
-  const SparsityPattern& p = model.pattern();
-  MatX m = MatX::Zero(p.size(), p.size());
-  for (Index c = 0; c < p.size(); ++c)
-    for (Index k = p.column_start()[c]; k < p.column_start()[c + 1]; ++k) m(p.row_index()[k], c) = values[k];
-  return m;
-}
-
 class AssembledMatrix : public ::testing::TestWithParam<JointVariant> {};
 
 // Each weight in turn isolates ∂R/∂q (with the geometric stiffness and the constraint columns
@@ -49,7 +44,8 @@ class AssembledMatrix : public ::testing::TestWithParam<JointVariant> {};
 TEST_P(AssembledMatrix, EqualsFiniteDifferencesOfTheResidual) {
   const Model model = multibody_scene(GetParam());
   Workspace ws(model);
-  const Index n = model.coordinate_count(), m = model.multiplier_count(), size = model.system_size();
+  const Index n = model.coordinate_count(), m = model.multiplier_count(),
+              size = model.system_size();
   const SystemState s0 = random_state(model, 11);
   VecX values(model.pattern().nonzeros());
 
@@ -67,17 +63,22 @@ TEST_P(AssembledMatrix, EqualsFiniteDifferencesOfTheResidual) {
   };
   double worst = 0.0;
   for (int which = 0; which < 3; ++which) {
-    const IterationWeights w{which == 0 ? 1.0 : 0.0, which == 1 ? 1.0 : 0.0, which == 2 ? 1.0 : 0.0};
+    const IterationWeights w{which == 0 ? 1.0 : 0.0, which == 1 ? 1.0 : 0.0,
+                             which == 2 ? 1.0 : 0.0};
     assemble_iteration_matrix(model, s0, w, ws, as_span(values));
-    MatX j = dense(model, values);
+    MatX j = dense(model.pattern(), values);
     VecX y(size);
     y << (which == 0 ? s0.q : which == 1 ? s0.v : s0.a), s0.lambda;
     if (which != 0) j.bottomRows(m).setZero();  // Φ depends on q only
     const fdcheck::Result r = fdcheck::check_jacobian(residual_of(which), y, j);
-    std::printf("  d/d%s: worst error/tolerance %.3f, error/max|J| %.2e\n", which == 0 ? "q" : which == 1 ? "v" : "a",
+    std::printf("  d/d%s: worst error/tolerance %.3f, error/max|J| %.2e\n",
+                which == 0   ? "q"
+                : which == 1 ? "v"
+                             : "a",
                 r.max_ratio, r.max_rel);
     EXPECT_TRUE(r.ok()) << "d/d" << which << ": row " << model.describe_row(r.row) << ", column "
-                        << model.describe_row(r.col) << ": analytic " << r.analytic << ", FD " << r.fd;
+                        << model.describe_row(r.col) << ": analytic " << r.analytic << ", FD "
+                        << r.fd;
     worst = std::max(worst, r.max_ratio);
   }
   // The weighted matrix is linear in the weights: generalized-α (h = 1e-3, ρ∞ = 0.8) and IDA.
@@ -86,21 +87,24 @@ TEST_P(AssembledMatrix, EqualsFiniteDifferencesOfTheResidual) {
   for (const IterationWeights w : {IterationWeights{1.0, gamma / (beta * h), 1.0 / (beta * h * h)},
                                    IterationWeights{0.0, 1.0, 2.5e3}}) {
     assemble_iteration_matrix(model, s0, w, ws, as_span(values));
-    const MatX combined = dense(model, values);
+    const MatX combined = dense(model.pattern(), values);
     MatX expected = MatX::Zero(size, size);
     for (int which = 0; which < 3; ++which) {
       const double wk = which == 0 ? w.w_q : which == 1 ? w.w_v : w.w_a;
-      assemble_iteration_matrix(model, s0, IterationWeights{which == 0 ? 1.0 : 0.0, which == 1 ? 1.0 : 0.0, which == 2 ? 1.0 : 0.0},
-                                ws, as_span(values));
-      MatX part = dense(model, values);
+      assemble_iteration_matrix(
+          model, s0,
+          IterationWeights{which == 0 ? 1.0 : 0.0, which == 1 ? 1.0 : 0.0, which == 2 ? 1.0 : 0.0},
+          ws, as_span(values));
+      MatX part = dense(model.pattern(), values);
       part.bottomRows(m).setZero();
       part.rightCols(m).setZero();
       expected += wk * part;
     }
     assemble_iteration_matrix(model, s0, IterationWeights{0, 0, 0}, ws, as_span(values));
-    expected += dense(model, values);  // constraint blocks, unweighted
+    expected += dense(model.pattern(), values);  // constraint blocks, unweighted
     const double scale = expected.cwiseAbs().maxCoeff();
-    EXPECT_LT((combined - expected).cwiseAbs().maxCoeff(), 64 * std::numeric_limits<double>::epsilon() * scale);
+    EXPECT_LT((combined - expected).cwiseAbs().maxCoeff(),
+              64 * std::numeric_limits<double>::epsilon() * scale);
   }
 }
 
@@ -127,17 +131,20 @@ TEST_P(AssembledMatrix, VelocityConstraintIsTimeDerivativeOfPhi) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Joints, AssembledMatrix,
-                         ::testing::Values(JointVariant::revolute, JointVariant::spherical, JointVariant::fixed),
+                         ::testing::Values(JointVariant::revolute, JointVariant::spherical,
+                                           JointVariant::fixed),
                          [](const ::testing::TestParamInfo<JointVariant>& p) {
-                           return p.param == JointVariant::revolute ? "Revolute"
-                                  : p.param == JointVariant::spherical ? "Spherical" : "Fixed";
+                           return p.param == JointVariant::revolute    ? "Revolute"
+                                  : p.param == JointVariant::spherical ? "Spherical"
+                                                                       : "Fixed";
                          });
 
 // Internal forces of a free system have zero resultant force and moment: cable elastic and
 // damping forces, joint reactions Φ_qᵀλ, spring-dampers and drives between bodies. The resultant
 // of a generalised force G is Σ_blocks t_b·G_b (translation field) and the moment Σ_b x_b × G_b.
 TEST(FreeSystem, InternalForcesHaveZeroResultantForceAndMoment) {
-  for (const JointVariant variant : {JointVariant::revolute, JointVariant::spherical, JointVariant::fixed}) {
+  for (const JointVariant variant :
+       {JointVariant::revolute, JointVariant::spherical, JointVariant::fixed}) {
     const Model model = multibody_scene(variant, false);
     Workspace ws(model);
     // Position rows e·(P₁ − P₂) are rotation invariant only where they hold, so positions of the
@@ -146,8 +153,10 @@ TEST(FreeSystem, InternalForcesHaveZeroResultantForceAndMoment) {
     SystemState s = random_state(model, 3);
     const SystemState s_init = SystemState::initial(model);
     for (const auto& [cable, node] : {std::pair{0, 3}, {0, 5}, {1, 2}, {1, 4}})
-      s.q.segment<3>(model.node_coordinate(cable, node)) = s_init.q.segment<3>(model.node_coordinate(cable, node));
-    for (const BodyData& b : model.bodies()) s.q.segment<12>(b.first_coordinate) = s_init.q.segment<12>(b.first_coordinate);
+      s.q.segment<3>(model.node_coordinate(cable, node)) =
+          s_init.q.segment<3>(model.node_coordinate(cable, node));
+    for (const BodyData& b : model.bodies())
+      s.q.segment<12>(b.first_coordinate) = s_init.q.segment<12>(b.first_coordinate);
     s.a.setZero();
     const Index n = model.coordinate_count();
     VecX r(model.system_size());
@@ -170,7 +179,8 @@ TEST(FreeSystem, InternalForcesHaveZeroResultantForceAndMoment) {
     ASSERT_EQ(n, model.coordinate_count());
     // Summation of O(n) terms of size ≤ scale: round-off ≤ a few ε·scale.
     const double tol = 16 * std::numeric_limits<double>::epsilon() * scale;
-    std::printf("  free system: |resultant| %.2e, |moment| %.2e, tolerance %.2e\n", force.norm(), moment.norm(), tol);
+    std::printf("  free system: |resultant| %.2e, |moment| %.2e, tolerance %.2e\n", force.norm(),
+                moment.norm(), tol);
     EXPECT_LT(force.norm(), tol);
     EXPECT_LT(moment.norm(), tol);
   }
@@ -197,7 +207,8 @@ TEST(Redundancy, IsReportedByName) {
   }
   {
     ModelBuilder b;
-    const Index body = b.add_body("block", testing::box_inertia(1.0, Vec3(0.1, 0.1, 0.1), Vec3::Zero()), Vec3::Zero());
+    const Index body = b.add_body(
+        "block", testing::box_inertia(1.0, Vec3(0.1, 0.1, 0.1), Vec3::Zero()), Vec3::Zero());
     b.fixed_to_ground("weld", body);
     b.revolute_to_ground("hinge", body, Vec3(0.05, 0.0, 0.0), Vec3::UnitZ());
     try {
