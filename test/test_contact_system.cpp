@@ -248,6 +248,13 @@ TEST(ContactOutput, ResultantsMatchTheResidual) {
   const Vec3 total = states[0].normal_force + states[0].friction_force;
   std::printf("  contact resultant %.12e N, from residual %.12e N\n", total.z(), sum.z());
   EXPECT_LE((sum - total).norm(), 64 * kEps * states[0].normal_force.norm());
+  // The straight cable presses in uniformly: the resultant acts at mid-length, at the height of
+  // the (pressed-in) centreline.
+  std::printf("  resultant acts at (%.6f, %.6f, %.6f) m\n", states[0].centre.x(), states[0].centre.y(),
+              states[0].centre.z());
+  EXPECT_NEAR(states[0].centre.x(), 0.25, 1e-12);
+  EXPECT_NEAR(states[0].centre.y(), 0.0, 1e-15);
+  EXPECT_NEAR(states[0].centre.z(), s.q[c.first_coordinate + 2], 1e-15);
   ContactMonitor monitor(model);
   SystemState apart = SystemState::initial(model);
   apart.q.array() += 0.0;

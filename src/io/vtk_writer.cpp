@@ -6,13 +6,14 @@
 
 #include "ancf/core/error.hpp"
 #include "ancf/physics/hermite_shape.hpp"
+#include "ancf/system/contact_output.hpp"
 
 namespace ancf {
 
 namespace {
 
 struct PolyData {
-  std::vector<Vec3> points, velocities;
+  std::vector<Vec3> points, velocities, contact_forces;
   std::vector<std::vector<Index>> verts, lines;
   std::vector<int> vert_object, line_object;
 };
@@ -78,6 +79,23 @@ void write_vtp(const std::string& path, const Model& model, const SystemState& s
     }
     ++object;
   }
+  d.contact_forces.assign(d.points.size(), Vec3::Zero());
+  // Contact: one vertex per pair in contact, where its resultant acts, carrying the resultant
+  // (normal + friction, on the pair's first cable) as point data "contact_force" [N].
+  if (model.contact_pair_count() > 0) {
+    Workspace ws(model);
+    std::vector<ContactPairState> pairs(static_cast<std::size_t>(model.contact_pair_count()));
+    contact_states(model, state, ws, pairs);
+    for (const ContactPairState& p : pairs) {
+      ++object;
+      if (!p.active) continue;
+      d.verts.push_back({static_cast<Index>(d.points.size())});
+      d.vert_object.push_back(object - 1);
+      d.points.push_back(p.centre);
+      d.velocities.push_back(Vec3::Zero());
+      d.contact_forces.push_back(p.normal_force + p.friction_force);
+    }
+  }
   std::ofstream out(path);
   if (!out) throw ModelError("cannot create " + path);
   out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\" "
@@ -91,6 +109,7 @@ void write_vtp(const std::string& path, const Model& model, const SystemState& s
   append_vectors(out, "Points", d.points);
   out << "</Points>\n<PointData Vectors=\"velocity\">\n";
   append_vectors(out, "velocity", d.velocities);
+  append_vectors(out, "contact_force", d.contact_forces);
   out << "</PointData>\n";
   append_cells(out, "Verts", d.verts);
   append_cells(out, "Lines", d.lines);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "contact_sampling.hpp"
 
@@ -10,7 +11,9 @@ namespace {
 
 class StateSink final : public detail::ContactSink {
  public:
-  explicit StateSink(std::span<ContactPairState> out) : out_(out) {}
+  explicit StateSink(std::span<ContactPairState> out) : out_(out), weights_(out.size(), 0.0) {}
+  /// Σ |w f_n| of the active samples of pair k (normalises ContactPairState::centre).
+  [[nodiscard]] double weight(std::size_t k) const { return weights_[k]; }
   void add(const ContactSampleResult& s, const detail::ContactSampleBlocks& b) override {
     ContactPairState& p = out_[b.pair];
     p.min_gap = std::min(p.min_gap, s.gap);
@@ -20,10 +23,13 @@ class StateSink final : public detail::ContactSink {
     p.normal_force += s.normal_force;
     p.friction_force += s.friction_force;
     p.peak_sample_force = std::max(p.peak_sample_force, s.normal_force.norm());
+    p.centre += s.normal_force.norm() * s.point;  // normalised in contact_states()
+    weights_[static_cast<std::size_t>(b.pair)] += s.normal_force.norm();
   }
 
  private:
   std::span<ContactPairState> out_;
+  std::vector<double> weights_;
 };
 
 }  // namespace
@@ -33,6 +39,8 @@ void contact_states(const Model& model, const SystemState& state, Workspace& ws,
   std::fill(out.begin(), out.end(), ContactPairState{});
   StateSink sink(out);
   detail::visit_contact_samples(model, state, ws, {.jacobians = false, .all_samples = true}, sink);
+  for (std::size_t k = 0; k < out.size(); ++k)
+    out[k].centre = sink.weight(k) > 0.0 ? Vec3(out[k].centre / sink.weight(k)) : Vec3::Zero();
 }
 
 ContactMonitor::ContactMonitor(const Model& model)

@@ -1,6 +1,7 @@
 // ParaView output: one ASCII VTK PolyData file (.vtp) per output frame and a .pvd collection
 // that lists them with their times. Cables are polylines through points sampled on the Hermite
-// interpolation of each element; bodies are a vertex at the origin plus three axis lines.
+// interpolation of each element; bodies are a vertex at the origin plus three axis lines; each
+// contact pair in contact is a vertex where its resultant acts, with the force as point data.
 #pragma once
 
 #include <string>
@@ -11,8 +12,10 @@
 namespace ancf {
 
 /// Write `path` (.vtp) for `state`: `samples_per_element` ≥ 1 segments per cable element, body
-/// axes drawn `axis_length` [m] long. Cell data "object" numbers cables 0 … then bodies; point
-/// data "velocity" [m/s]. Throws ModelError if the file cannot be written.
+/// axes drawn `axis_length` [m] long. Cell data "object" numbers cables 0 …, then bodies, then
+/// contact pairs (Model numbering); point data "velocity" [m/s] and "contact_force" [N] (the
+/// pair's resultant at its vertex, zero elsewhere: a Glyph filter draws it). Throws ModelError if
+/// the file cannot be written.
 void write_vtp(const std::string& path, const Model& model, const SystemState& state,
                int samples_per_element, double axis_length);
 

@@ -18,6 +18,9 @@ struct ContactPairState {
   Vec3 normal_force = Vec3::Zero();    ///< Σ w f_n n on the pair's (first) cable [N]
   Vec3 friction_force = Vec3::Zero();  ///< Σ w f_t on the pair's (first) cable [N]
   double peak_sample_force = 0.0;      ///< max over samples of |w f_n| [N]
+  /// Where the resultant acts: mean of the active samples' centreline points weighted by |w f_n|
+  /// [m] (zero when inactive). Used to draw the contact force (VTK output).
+  Vec3 centre = Vec3::Zero();
 };
 
 /// States of every contact pair (model.contact_pair_count() entries, numbered as in Model).
