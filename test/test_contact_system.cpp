@@ -25,6 +25,7 @@
 #include "ancf/system/static_model_problem.hpp"
 #include "dense_matrix.hpp"
 #include "fd_check.hpp"
+#include "fitted_order.hpp"
 
 namespace ancf {
 namespace {
@@ -250,8 +251,8 @@ TEST(ContactOutput, ResultantsMatchTheResidual) {
   EXPECT_LE((sum - total).norm(), 64 * kEps * states[0].normal_force.norm());
   // The straight cable presses in uniformly: the resultant acts at mid-length, at the height of
   // the (pressed-in) centreline.
-  std::printf("  resultant acts at (%.6f, %.6f, %.6f) m\n", states[0].centre.x(), states[0].centre.y(),
-              states[0].centre.z());
+  std::printf("  resultant acts at (%.6f, %.6f, %.6f) m\n", states[0].centre.x(),
+              states[0].centre.y(), states[0].centre.z());
   EXPECT_NEAR(states[0].centre.x(), 0.25, 1e-12);
   EXPECT_NEAR(states[0].centre.y(), 0.0, 1e-15);
   EXPECT_NEAR(states[0].centre.z(), s.q[c.first_coordinate + 2], 1e-15);
@@ -464,14 +465,7 @@ TEST(CableImpact, IdaAndGeneralizedAlphaAgree) {
     diffs.push_back(diff);
     std::printf("  h %.2e: max |q - q_IDA| %.3e\n", o.step_size, diff);
   }
-  // Least-squares slope of log(diff) against log(h).
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  const double k = static_cast<double>(hs.size());
-  for (std::size_t i = 0; i < hs.size(); ++i) {
-    const double x = std::log(hs[i]), yv = std::log(diffs[i]);
-    sx += x, sy += yv, sxx += x * x, sxy += x * yv;
-  }
-  const double order = (k * sxy - sx * sy) / (k * sxx - sx * sx);
+  const double order = testing::fitted_order(hs, diffs);
   std::printf("  observed order of the difference: %.3f\n", order);
   EXPECT_GT(order, 1.8);
   EXPECT_LT(order, 2.2);

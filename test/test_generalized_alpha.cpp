@@ -34,22 +34,14 @@
 #include "ancf/system/ggl_problem.hpp"
 #include "ancf/system/model_builder.hpp"
 #include "ancf/system/multibody_problem.hpp"
+#include "fitted_order.hpp"
 
 namespace ancf {
 namespace {
 
 // --- helpers -------------------------------------------------------------------------------------
 
-/// Least-squares slope of log(error) against log(h).
-double fitted_order(const std::vector<double>& h, const std::vector<double>& error) {
-  const auto n = static_cast<double>(h.size());
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  for (std::size_t i = 0; i < h.size(); ++i) {
-    const double x = std::log(h[i]), y = std::log(error[i]);
-    sx += x, sy += y, sxx += x * x, sxy += x * y;
-  }
-  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
-}
+using testing::fitted_order;
 
 /// Jacobi elliptic functions sn, cn, dn of (u, m = k²) by the descending Landen / AGM scale
 /// (Abramowitz & Stegun 16.4).
