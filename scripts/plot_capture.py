@@ -25,51 +25,37 @@ def read_columns(path):
     return {k: [float(r[k]) for r in rows] for k in rows[0]} if rows else {}
 
 
+def two_panels(path, title, panels, data, threshold=None):
+    """One figure of two stacked panels sharing t; panels = [(ylabel, [(column, label suffix)])]."""
+    fig, ax = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
+    for axis, (ylabel, columns) in zip(ax, panels):
+        for name, c in data:
+            for column, suffix in columns:
+                axis.plot(c["t"], c[column], label=f"{name}{suffix}", lw=1)
+        axis.set_ylabel(ylabel)
+    if threshold is not None:
+        ax[0].axhline(threshold, color="grey", ls=":", lw=1)
+    ax[0].legend(fontsize=7)
+    ax[1].set_xlabel("t [s]")
+    fig.suptitle(title)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
 def time_series(dirs):
     data = [(os.path.basename(os.path.normpath(d)), read_columns(os.path.join(d, "samples.csv"))) for d in dirs]
     out = dirs[0]
-
-    fig, ax = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
-    for name, c in data:
-        ax[0].plot(c["t"], c["tilt_deg"], label=name)
-        ax[1].plot(c["t"], c["lateral_offset_mm"], label=name)
-    ax[0].axhline(0.3, color="grey", ls=":", lw=1)
-    ax[0].set_ylabel("pole tilt [deg]")
-    ax[1].set_ylabel("axis offset at z = h/2 [mm]")
-    ax[1].set_xlabel("t [s]")
-    ax[0].legend()
-    fig.suptitle("Capture: pole alignment")
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "capture_tilt.png"), dpi=120)
-    plt.close(fig)
-
-    fig, ax = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
-    for name, c in data:
-        ax[0].plot(c["t"], c["drive_torque"], label=name)
-        ax[1].plot(c["t"], c["ring_angle_deg"], label=name)
-    ax[0].axhline(0.95 * 6.0, color="grey", ls=":", lw=1)
-    ax[0].set_ylabel("drive torque [N m]")
-    ax[1].set_ylabel("ring angle [deg]")
-    ax[1].set_xlabel("t [s]")
-    ax[0].legend()
-    fig.suptitle("Capture: ring drive")
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "capture_drive.png"), dpi=120)
-    plt.close(fig)
-
-    fig, ax = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
-    for name, c in data:
-        for i in (1, 2, 3):
-            ax[0].plot(c["t"], c[f"pole_force_{i}"], label=f"{name} rope {i}", lw=1)
-            ax[1].plot(c["t"], c[f"ring_tension_{i}"], label=f"{name} rope {i}", lw=1)
-    ax[0].set_ylabel("rope-pole normal force [N]")
-    ax[1].set_ylabel("rope end force at ring [N]")
-    ax[1].set_xlabel("t [s]")
-    ax[0].legend(fontsize=7)
-    fig.suptitle("Capture: contact and rope forces")
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "capture_contact.png"), dpi=120)
-    plt.close(fig)
+    two_panels(os.path.join(out, "capture_tilt.png"), "Capture: pole alignment",
+               [("pole tilt [deg]", [("tilt_deg", "")]),
+                ("axis offset at z = h/2 [mm]", [("lateral_offset_mm", "")])], data, threshold=0.3)
+    two_panels(os.path.join(out, "capture_drive.png"), "Capture: ring drive",
+               [("drive torque [N m]", [("drive_torque", "")]),
+                ("ring angle [deg]", [("ring_angle_deg", "")])], data, threshold=0.95 * 6.0)
+    ropes = (1, 2, 3)
+    two_panels(os.path.join(out, "capture_contact.png"), "Capture: contact and rope forces",
+               [("rope-pole normal force [N]", [(f"pole_force_{i}", f" rope {i}") for i in ropes]),
+                ("rope end force at ring [N]", [(f"ring_tension_{i}", f" rope {i}") for i in ropes])], data)
 
 
 def snapshots(d):
