@@ -53,7 +53,7 @@ void RunOutputs::record(const SystemState& state) {
   if (pvd_) {
     const std::string file = fmt::format("frames/frame_{:06d}.vtp", pvd_->size());
     write_vtp(dir_ + "/" + file, scene_.model, state, scene_.output.vtk_samples_per_element,
-              axis_length_);
+              axis_length_, ws_);
     pvd_->add(state.t, file);
   }
 }

@@ -39,7 +39,7 @@ void append_vectors(std::ofstream& out, const char* name, const std::vector<Vec3
 }  // namespace
 
 void write_vtp(const std::string& path, const Model& model, const SystemState& state,
-               int samples_per_element, double axis_length) {
+               int samples_per_element, double axis_length, Workspace& ws) {
   PolyData d;
   int object = 0;
   for (const CableData& c : model.cables()) {
@@ -83,7 +83,6 @@ void write_vtp(const std::string& path, const Model& model, const SystemState& s
   // Contact: one vertex per pair in contact, where its resultant acts, carrying the resultant
   // (normal + friction, on the pair's first cable) as point data "contact_force" [N].
   if (model.contact_pair_count() > 0) {
-    Workspace ws(model);
     std::vector<ContactPairState> pairs(static_cast<std::size_t>(model.contact_pair_count()));
     contact_states(model, state, ws, pairs);
     for (const ContactPairState& p : pairs) {

@@ -15,9 +15,9 @@ namespace ancf {
 /// axes drawn `axis_length` [m] long. Cell data "object" numbers cables 0 …, then bodies, then
 /// contact pairs (Model numbering); point data "velocity" [m/s] and "contact_force" [N] (the
 /// pair's resultant at its vertex, zero elsewhere: a Glyph filter draws it). Throws ModelError if
-/// the file cannot be written.
+/// the file cannot be written. `ws` is scratch for the contact states (a workspace of `model`).
 void write_vtp(const std::string& path, const Model& model, const SystemState& state,
-               int samples_per_element, double axis_length);
+               int samples_per_element, double axis_length, Workspace& ws);
 
 /// The .pvd series file, rewritten after every added frame so that it is valid even if the run
 /// stops early.
