@@ -13,6 +13,7 @@
 #include <random>
 #include <vector>
 
+#include "ancf/core/fitted_order.hpp"
 #include "ancf/scenes/contact_scenes.hpp"
 #include "ancf/solvers/generalized_alpha.hpp"
 #include "ancf/solvers/ida_integrator.hpp"
@@ -25,7 +26,6 @@
 #include "ancf/system/static_model_problem.hpp"
 #include "dense_matrix.hpp"
 #include "fd_check.hpp"
-#include "fitted_order.hpp"
 
 namespace ancf {
 namespace {
@@ -465,7 +465,7 @@ TEST(CableImpact, IdaAndGeneralizedAlphaAgree) {
     diffs.push_back(diff);
     std::printf("  h %.2e: max |q - q_IDA| %.3e\n", o.step_size, diff);
   }
-  const double order = testing::fitted_order(hs, diffs);
+  const double order = fitted_order(hs, diffs);
   std::printf("  observed order of the difference: %.3f\n", order);
   EXPECT_GT(order, 1.8);
   EXPECT_LT(order, 2.2);

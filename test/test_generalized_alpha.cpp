@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "ancf/core/error.hpp"
+#include "ancf/core/fitted_order.hpp"
 #include "ancf/core/klu_solver.hpp"
 #include "ancf/physics/rigid_body.hpp"
 #include "ancf/scenes/pendulums.hpp"
@@ -34,14 +35,11 @@
 #include "ancf/system/ggl_problem.hpp"
 #include "ancf/system/model_builder.hpp"
 #include "ancf/system/multibody_problem.hpp"
-#include "fitted_order.hpp"
 
 namespace ancf {
 namespace {
 
 // --- helpers -------------------------------------------------------------------------------------
-
-using testing::fitted_order;
 
 /// Jacobi elliptic functions sn, cn, dn of (u, m = k²) by the descending Landen / AGM scale
 /// (Abramowitz & Stegun 16.4).

@@ -1,11 +1,12 @@
-// Observed order of convergence: the least-squares slope of log(error) against log(h).
+// Observed order of convergence: the least-squares slope of log(error) against log(h). Shared by
+// the convergence tests and the study executables (time, mesh and scaling studies).
 #pragma once
 
 #include <cmath>
 #include <cstddef>
 #include <vector>
 
-namespace ancf::testing {
+namespace ancf {
 
 /// Precondition: h.size() == error.size() ≥ 2, all entries > 0, not all h equal.
 inline double fitted_order(const std::vector<double>& h, const std::vector<double>& error) {
@@ -18,4 +19,4 @@ inline double fitted_order(const std::vector<double>& h, const std::vector<doubl
   return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
-}  // namespace ancf::testing
+}  // namespace ancf
