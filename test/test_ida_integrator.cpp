@@ -4,14 +4,15 @@
 // re-initialization; failure reports.
 #include <gtest/gtest.h>
 
-#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
 #include <stdexcept>
 #include <vector>
 
+#include "ancf/scenes/modal_analysis.hpp"
 #include "ancf/scenes/pendulums.hpp"
+#include "ancf/scenes/vibration_scenes.hpp"
 #include "ancf/solvers/ida_integrator.hpp"
 #include "ancf/system/cable_geometry.hpp"
 #include "ancf/system/ggl_problem.hpp"
@@ -139,8 +140,8 @@ TEST(IdaGerstmayrShabana, EnergyErrorShrinksWithRtol) {
 
 // ---- Small-amplitude vibrations (REFERENCES §4) ----------------------------------------------
 // The initial velocity is mode 1 of the discrete system linearised at the (static) initial
-// configuration (dense generalized eigenproblem K φ = ω² M φ restricted to one displacement
-// direction, pinned positions removed), so the motion is a single mode and its zero crossings
+// configuration (natural_modes, scenes/modal_analysis.hpp: dense K φ = ω² M φ restricted to one
+// displacement component, on the null space of the pins), so the motion is a single mode and its zero crossings
 // (events on one velocity component; three span a period) give its frequency. Two checks:
 //  * IDA measures the discrete frequency ω_h: |ω_meas − ω_h| ≤ 1e-7·ω_h. Two effects set this
 //    floor: the position tolerance (≈ rtol·|q| with |q| ~ L) relative to the displacement
@@ -160,50 +161,19 @@ struct Mode {
 };
 
 Mode lowest_mode(const Model& model, int direction, double amplitude) {
-  Workspace ws(model);
-  SystemState s = SystemState::initial(model);
-  s.v.setZero();
-  s.lambda.setZero();  // the pins are linear in q: no geometric stiffness from their reactions
-  const SparsityPattern& p = model.pattern();
-  auto dense = [&](const IterationWeights& w) {
-    VecX values(p.nonzeros());
-    assemble_iteration_matrix(model, s, w, ws, as_span(values));
-    MatX m = MatX::Zero(p.size(), p.size());
-    for (Index c = 0; c < p.size(); ++c)
-      for (Index k = p.column_start()[c]; k < p.column_start()[c + 1]; ++k)
-        m(p.row_index()[k], c) = values[k];
-    return m;
-  };
-  const MatX k_full = dense({1.0, 0.0, 0.0}), m_full = dense({0.0, 0.0, 1.0});
-  // Free coordinates along `direction`: every slope, and the positions of unpinned nodes (a
-  // position is pinned if a constraint row's gradient touches it).
+  // λ = 0 at the initial state: the pins are linear in q, no geometric stiffness from reactions.
+  const NaturalModes modes =
+      natural_modes(model, SystemState::initial(model), {.component = direction});
+  const VecX phi = modes.shapes.col(0);
   const CableData& c = model.cables()[0];
-  std::vector<Index> dofs;
-  for (Index node = 0; node < c.node_count; ++node)
-    for (const Index offset : {Index{0}, Index{3}}) {
-      const Index i = c.first_coordinate + 6 * node + offset + direction;
-      bool pinned = false;
-      for (Index r = 0; r < model.multiplier_count(); ++r)
-        pinned = pinned || k_full.row(model.coordinate_count() + r).cwiseAbs()(i) != 0.0;
-      if (!pinned) dofs.push_back(i);
-    }
-  const Index n = static_cast<Index>(dofs.size());
-  MatX k(n, n), m(n, n);
-  for (Index a = 0; a < n; ++a)
-    for (Index b = 0; b < n; ++b)
-      k(a, b) = k_full(dofs[a], dofs[b]), m(a, b) = m_full(dofs[a], dofs[b]);
-  const Eigen::GeneralizedSelfAdjointEigenSolver<MatX> eig(0.5 * (k + k.transpose()), m);
-  const VecX phi = eig.eigenvectors().col(0);
   double largest = 0.0;
-  for (Index a = 0; a < n; ++a)
-    if ((dofs[a] - c.first_coordinate) % 6 < 3) largest = std::max(largest, std::abs(phi[a]));
+  for (Index node = 0; node < c.node_count; ++node)
+    largest = std::max(largest, std::abs(phi[c.first_coordinate + 6 * node + direction]));
   Mode mode;
-  mode.omega = std::sqrt(eig.eigenvalues()[0]);
+  mode.omega = modes.omega(0);
   mode.velocity.assign(static_cast<std::size_t>(c.node_count), NodeCoordinates::Zero());
-  for (Index a = 0; a < n; ++a) {
-    const Index local = dofs[a] - c.first_coordinate;
-    mode.velocity[local / 6][local % 6] = amplitude * phi[a] / largest;
-  }
+  for (Index node = 0; node < c.node_count; ++node)
+    mode.velocity[node] = amplitude * phi.segment<6>(c.first_coordinate + 6 * node) / largest;
   return mode;
 }
 
@@ -227,36 +197,19 @@ double measured_frequency(const Model& model, Index probe, double period_guess, 
   return 2.0 * std::numbers::pi / (crossings[2] - crossings[0]);
 }
 
-// Axial bar fixed–free: pinned at x = 0, EA = 1e4 N, ρA = 0.1 kg/m, L = 1 m: ω₁ = πc/(2L),
-// c = √(EA/ρA). Probe: tip v_x.
-Model axial_bar(Index elements, const std::vector<NodeCoordinates>* velocities) {
-  ModelBuilder b;
-  CableSection s;
-  s.axial_stiffness = 1e4;
-  s.mass_per_length = 0.1;
-  const CableGeometry g = straight_cable(Vec3::Zero(), Vec3::UnitX(), elements);
-  const Index c = b.add_cable("bar", g, s);
-  if (velocities) b.set_initial_configuration(c, g, velocities);
-  b.pin("root", {c, 0}, Vec3::Zero());
-  return b.finalize();
-}
-
-// Taut string pinned at both ends, reference length L₀ = 1 m stretched by λ = 1.01 (Green strain
-// ε = (λ² − 1)/2, tension T = EA ε λ), EA = 1e4 N, ρA = 0.1 kg/m, EI = 0:
-// ω₁ = (π/L₀)√(T/(λρA)). Probe: mid-span v_y.
+// Axial bar fixed–free (pinned at x = 0) and taut string pinned at both ends, stretched by
+// λ = 1.01 (scenes/vibration_scenes.hpp): EA = 1e4 N, ρA = 0.1 kg/m, L = 1 m, EI = 0.
+// Probes: tip v_x of the bar, mid-span v_y of the string.
 constexpr double kStretch = 1.01;
+UniformCableSpec vibrating_cable(Index elements) {
+  return {.length = 1.0, .axial_stiffness = 1e4, .bending_stiffness = 0.0,
+          .mass_per_length = 0.1, .elements = elements};
+}
+Model axial_bar(Index elements, const std::vector<NodeCoordinates>* velocities) {
+  return fixed_free_bar_model(vibrating_cable(elements), velocities);
+}
 Model taut_string(Index elements, const std::vector<NodeCoordinates>* velocities) {
-  ModelBuilder b;
-  CableSection s;
-  s.axial_stiffness = 1e4;
-  s.mass_per_length = 0.1;
-  const Index c = b.add_cable("string", straight_cable(Vec3::Zero(), Vec3::UnitX(), elements), s);
-  CableGeometry g = straight_cable(Vec3::Zero(), kStretch * Vec3::UnitX(), elements);
-  for (NodeCoordinates& node : g.nodes) node.tail<3>() = kStretch * Vec3::UnitX();  // r_x = λ x̂
-  b.set_initial_configuration(c, g, velocities);
-  b.pin("left", {c, 0}, Vec3::Zero());
-  b.pin("right", {c, -1}, kStretch * Vec3::UnitX());
-  return b.finalize();
+  return taut_string_model(vibrating_cable(elements), kStretch, velocities);
 }
 
 void check_frequency(const char* name, SceneBuilder scene, Index coarse, int direction,
@@ -289,14 +242,13 @@ void check_frequency(const char* name, SceneBuilder scene, Index coarse, int dir
 }
 
 TEST(IdaVibration, AxialBarFixedFree) {
-  const double c = std::sqrt(1e4 / 0.1);
-  check_frequency("axial bar", axial_bar, 1, 0, 1, 1e-3, 1e-12, std::numbers::pi * c / 2.0);
+  check_frequency("axial bar", axial_bar, 1, 0, 1, 1e-3, 1e-12,
+                  fixed_free_bar_frequency(vibrating_cable(1), 1));
 }
 
 TEST(IdaVibration, TautString) {
-  const double tension = 1e4 * 0.5 * (kStretch * kStretch - 1.0) * kStretch;
   check_frequency("taut string", taut_string, 2, 1, 1, 1e-3, 1e-10,
-                  std::numbers::pi * std::sqrt(tension / (kStretch * 0.1)));
+                  taut_string_frequency(vibrating_cable(2), kStretch, 1));
 }
 
 // ---- A cable holding a rigid body through a spherical joint -------------------------------------
