@@ -40,6 +40,7 @@
 #include <string>
 #include <vector>
 
+#include "ancf/core/fitted_order.hpp"
 #include "ancf/io/run_metadata.hpp"
 #include "ancf/scenes/cantilever_references.hpp"
 #include "ancf/scenes/elastic_catenary.hpp"
@@ -186,13 +187,10 @@ Fit fit_order(const std::vector<const Sample*>& series, const Options& o) {
   Fit f;
   f.points = static_cast<int>(used.size());
   if (f.points < 3) return f;
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  for (const Sample* s : used) {
-    const double x = std::log(1.0 / static_cast<double>(s->elements)), y = std::log(s->error());
-    sx += x, sy += y, sxx += x * x, sxy += x * y;
-  }
-  const double m = f.points;
-  f.order = (m * sxy - sx * sy) / (m * sxx - sx * sx);
+  std::vector<double> h, e;
+  for (const Sample* s : used)
+    h.push_back(1.0 / static_cast<double>(s->elements)), e.push_back(s->error());
+  f.order = fitted_order(h, e);
   f.first = used.back()->elements;
   f.last = used.front()->elements;
   return f;
