@@ -44,8 +44,8 @@
 #include "ancf/io/run_metadata.hpp"
 #include "ancf/scenes/cantilever_references.hpp"
 #include "ancf/scenes/elastic_catenary.hpp"
-#include "ancf/scenes/modal_analysis.hpp"
 #include "ancf/scenes/vibration_scenes.hpp"
+#include "ancf/system/modal_analysis.hpp"
 
 using namespace ancf;
 

@@ -10,12 +10,12 @@
 #include <stdexcept>
 #include <vector>
 
-#include "ancf/scenes/modal_analysis.hpp"
 #include "ancf/scenes/pendulums.hpp"
 #include "ancf/scenes/vibration_scenes.hpp"
 #include "ancf/solvers/ida_integrator.hpp"
 #include "ancf/system/cable_geometry.hpp"
 #include "ancf/system/ggl_problem.hpp"
+#include "ancf/system/modal_analysis.hpp"
 #include "ancf/system/model_builder.hpp"
 
 namespace ancf {
@@ -141,8 +141,9 @@ TEST(IdaGerstmayrShabana, EnergyErrorShrinksWithRtol) {
 // ---- Small-amplitude vibrations (REFERENCES §4) ----------------------------------------------
 // The initial velocity is mode 1 of the discrete system linearised at the (static) initial
 // configuration (natural_modes, scenes/modal_analysis.hpp: dense K φ = ω² M φ restricted to one
-// displacement component, on the null space of the pins), so the motion is a single mode and its zero crossings
-// (events on one velocity component; three span a period) give its frequency. Two checks:
+// displacement component, on the null space of the pins), so the motion is a single mode and its
+// zero crossings (events on one velocity component; three span a period) give its frequency. Two
+// checks:
 //  * IDA measures the discrete frequency ω_h: |ω_meas − ω_h| ≤ 1e-7·ω_h. Two effects set this
 //    floor: the position tolerance (≈ rtol·|q| with |q| ~ L) relative to the displacement
 //    amplitude, and the geometric non-linearity, which was observed to shift the bar's frequency
@@ -202,8 +203,11 @@ double measured_frequency(const Model& model, Index probe, double period_guess, 
 // Probes: tip v_x of the bar, mid-span v_y of the string.
 constexpr double kStretch = 1.01;
 UniformCableSpec vibrating_cable(Index elements) {
-  return {.length = 1.0, .axial_stiffness = 1e4, .bending_stiffness = 0.0,
-          .mass_per_length = 0.1, .elements = elements};
+  return {.length = 1.0,
+          .axial_stiffness = 1e4,
+          .bending_stiffness = 0.0,
+          .mass_per_length = 0.1,
+          .elements = elements};
 }
 Model axial_bar(Index elements, const std::vector<NodeCoordinates>* velocities) {
   return fixed_free_bar_model(vibrating_cable(elements), velocities);
@@ -481,7 +485,9 @@ TEST(IdaAtRest, StressFreeCurvedCableWithoutLoadsStaysPut) {
   o.output_times = {0.1};
   IdaIntegrator ida(ggl, o);
   SystemState state = SystemState::initial(model);
-  ida.run([&](double t, std::span<const double> y, std::span<const double> yp) { ggl.unpack(t, y, yp, state); });
+  ida.run([&](double t, std::span<const double> y, std::span<const double> yp) {
+    ggl.unpack(t, y, yp, state);
+  });
   const double moved = (state.q - model.initial_coordinates()).lpNorm<Eigen::Infinity>();
   std::printf("  %ld steps, max |q - q0| %.3e\n", ida.statistics().steps, moved);
   EXPECT_LE(moved, 1e-9);

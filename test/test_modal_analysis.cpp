@@ -8,8 +8,8 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "ancf/scenes/modal_analysis.hpp"
 #include "ancf/scenes/vibration_scenes.hpp"
+#include "ancf/system/modal_analysis.hpp"
 #include "ancf/system/model_builder.hpp"
 
 namespace ancf {

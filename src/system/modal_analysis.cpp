@@ -1,4 +1,4 @@
-#include "ancf/scenes/modal_analysis.hpp"
+#include "ancf/system/modal_analysis.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
