@@ -9,7 +9,7 @@
 //  * catenary: mid-span sag and support tension of Irvine's elastic catenary (§3, EA = 1e3 N,
 //    elastic line: Irvine's strain measure);
 //  * beam, bar, string: natural frequencies of the linearisation at the equilibrium (dense
-//    K φ = ω² M φ on the constraint null space, scenes/modal_analysis.hpp) of a clamped–free
+//    K φ = ω² M φ on the constraint null space, system/modal_analysis.hpp) of a clamped–free
 //    Euler–Bernoulli beam (y bending, modes 1–4), a fixed–free axial bar (x, modes 1–3) and a taut
 //    string stretched by λ = 1.01 (y, modes 1–3), both strain measures (§4).
 //

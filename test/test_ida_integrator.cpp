@@ -140,7 +140,7 @@ TEST(IdaGerstmayrShabana, EnergyErrorShrinksWithRtol) {
 
 // ---- Small-amplitude vibrations (REFERENCES §4) ----------------------------------------------
 // The initial velocity is mode 1 of the discrete system linearised at the (static) initial
-// configuration (natural_modes, scenes/modal_analysis.hpp: dense K φ = ω² M φ restricted to one
+// configuration (natural_modes, system/modal_analysis.hpp: dense K φ = ω² M φ restricted to one
 // displacement component, on the null space of the pins), so the motion is a single mode and its
 // zero crossings (events on one velocity component; three span a period) give its frequency. Two
 // checks:

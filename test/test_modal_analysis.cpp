@@ -1,4 +1,4 @@
-// Linearised eigen-analysis (scenes/modal_analysis.hpp) against the analytic frequencies of
+// Linearised eigen-analysis (system/modal_analysis.hpp) against the analytic frequencies of
 // REFERENCES §4: clamped–free Euler–Bernoulli beam (first bending mode), fixed–free bar (first
 // axial mode), taut string; the βL roots; rejection of a coupled component. Smoke-sized (≤ 16
 // elements, dense eigen-solves of ≤ 100 unknowns).
