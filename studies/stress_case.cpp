@@ -88,6 +88,14 @@ void run_stress_case(const std::function<StressScene()>& make_scene, const Stres
       report.energy_error_final = rel;
       report.position_drift_max = std::max(report.position_drift_max, cv.position);
       report.velocity_drift_max = std::max(report.velocity_drift_max, cv.velocity);
+      if (report.series_count < kSeriesLength) {
+        const int k = report.series_count++;
+        report.series_t[k] = s.t;
+        report.series_energy[k] = rel;
+        report.series_position_drift[k] = cv.position;
+      }
+      if (s.lambda.size() > 0)
+        report.multiplier_max = std::max(report.multiplier_max, s.lambda.lpNorm<Eigen::Infinity>());
       if (!std::isfinite(rel) || rel > run.energy_growth_limit)
         throw BlowUp(CaseEnd::energy_growth,
                      fmt::format("energy grew by {:.3e} x scale by t = {:.9g} (the integrator did "

@@ -22,7 +22,8 @@ enum class CaseEnd : int {
   other_exception,  ///< any other exception
 };
 
-inline constexpr int kWallMarks = 11;  ///< wall time at t = 0, t_end/10, …, t_end
+inline constexpr int kWallMarks = 11;       ///< wall time at t = 0, t_end/10, …, t_end
+inline constexpr int kSeriesLength = 1001;  ///< outputs kept as a time series (the first ones)
 
 struct CaseReport {
   CaseEnd end = CaseEnd::running;
@@ -32,10 +33,15 @@ struct CaseReport {
   double energy_error_final = 0.0;  ///< (E − E₀)/scale at the last output
   double position_drift_max = 0.0;  ///< max |Φ| over the outputs
   double velocity_drift_max = 0.0;  ///< max |Φ_q v + Φ_t| over the outputs
+  double multiplier_max = 0.0;  ///< max ‖λ‖∞ over the outputs (the snap's force jump) [N]
   // Counters (integrator's own; steps also while running for generalized-α).
   long steps = 0, iterations = 0, factorizations = 0, failures = 0, halvings = 0;
   double wall_marks[kWallMarks] = {};  ///< integration wall time at the ten tenths of t_end [s]
-  char message[640] = {};              ///< the exception's text for the failed ends
+  // Time series of the first kSeriesLength outputs: t, (E − E₀)/scale, |Φ|max.
+  int series_count = 0;
+  double series_t[kSeriesLength] = {}, series_energy[kSeriesLength] = {},
+         series_position_drift[kSeriesLength] = {};
+  char message[640] = {};  ///< the exception's text for the failed ends
 };
 
 struct StressRun {

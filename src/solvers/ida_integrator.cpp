@@ -295,6 +295,12 @@ IdaIntegrator::IdaIntegrator(DaeProblem& problem, IdaOptions options)
     : options_(std::move(options)), impl_(std::make_unique<Impl>(problem, options_)) {
   Impl& s = *impl_;
   if (!(options_.rtol > 0.0)) throw SolverError("IdaIntegrator: rtol must be positive");
+  if (options_.rtol > kIdaMaxRtol)
+    throw SolverError(fmt::format(
+        "IdaIntegrator: rtol = {:g} is looser than {:g}; IDA would accept steps with errors of the "
+        "size of the solution (energy gains of several times the energy of the motion were seen "
+        "at rtol 3e-2), use rtol <= {:g} (SUNDIALS recommends <= 1e-3)",
+        options_.rtol, kIdaMaxRtol, kIdaMaxRtol));
   if (options_.max_order < 1 || options_.max_order > 5)
     throw SolverError("IdaIntegrator: max_order must be 1 … 5");
   SUNContext ctx = nullptr;
