@@ -121,10 +121,12 @@ def plot_long_run(series_rows, wall_rows, path):
     axes[0].set_title("energy error")
     axes[1].set_xlabel("t [s]")
     axes[1].set_ylabel("max |Φ| [m] (floored at 1e-20)")
-    axes[1].set_title("position constraint drift")
+    axes[1].set_title("position constraint drift (0 for a linear pin)")
     width = 0.8 / max(1, len(walls))
-    for i, (name, w) in enumerate(sorted(walls.items())):
-        w.sort()
+    for i, name in enumerate(list(series.keys()) or sorted(walls)):  # same colours as the lines
+        w = sorted(walls.get(name, []))
+        if not w:
+            continue
         tenths = np.array([k for k, _ in w])
         ratio = np.array([s for _, s in w]) / w[0][1]
         axes[2].bar(tenths + (i - 0.5 * (len(walls) - 1)) * width, ratio, width, label=name)

@@ -16,7 +16,8 @@
 // SolverError).
 //
 // Usage: ancf-study-stability [output directory = out/stability_stress] [--time-limit s = 20]
-//        [--long-time-limit s = 120] [--energy-growth-limit x = 0.5] [--group name]...
+//        [--long-time-limit s = 120] [--long-output-interval s = 1] [--energy-growth-limit x = 0.5]
+//        [--group name]...
 //        (default: all groups)
 // Writes <out>/cases.csv (one row per case), <out>/long_run_wall.csv (wall time per tenth of the
 // long runs), <out>/long_run_series.csv (their energy error and |Φ| every 1 s) and <out>/run.json
@@ -93,7 +94,7 @@ void add_all_integrators(std::vector<StressCase>& cases, StressCase base, double
   }
 }
 
-std::vector<StressCase> build_cases() {
+std::vector<StressCase> build_cases(double long_output_interval) {
   std::vector<StressCase> cases;
   for (const double f : {1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0}) {
     StressCase c{"stiffness", "gerstmayr-shabana-16",
@@ -128,7 +129,7 @@ std::vector<StressCase> build_cases() {
                  1e6,    ga_label(index2),       [] { return benchmark_pendulum_scene(4); },
                  {}};
     c.run.settings = genalpha(1e-3, index2 ? 1.0 : 0.8, index2, 1000.0);
-    c.run.output_interval = 1.0;
+    c.run.output_interval = long_output_interval;
     cases.push_back(c);
   }
   for (const bool index2 : {false, true})
@@ -214,6 +215,7 @@ int main(int argc, char** argv) {
   double time_limit = 20.0;
   double long_time_limit = 120.0;  // the 10⁶-step runs
   double growth_limit = StressRun{}.energy_growth_limit;
+  double long_output_interval = 1.0;  // [s] outputs of the 10⁶-step runs
   std::vector<std::string> groups;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -221,6 +223,8 @@ int main(int argc, char** argv) {
       time_limit = std::atof(argv[++i]);
     else if (a == "--long-time-limit" && i + 1 < argc)
       long_time_limit = std::atof(argv[++i]);
+    else if (a == "--long-output-interval" && i + 1 < argc)
+      long_output_interval = std::atof(argv[++i]);
     else if (a == "--energy-growth-limit" && i + 1 < argc)
       growth_limit = std::atof(argv[++i]);
     else if (a == "--group" && i + 1 < argc)
@@ -236,7 +240,7 @@ int main(int argc, char** argv) {
     }
   }
   std::filesystem::create_directories(out_dir);
-  std::vector<StressCase> cases = build_cases();
+  std::vector<StressCase> cases = build_cases(long_output_interval);
   if (!groups.empty())
     std::erase_if(cases, [&](const StressCase& c) {
       return std::find(groups.begin(), groups.end(), c.group) == groups.end();
@@ -301,6 +305,7 @@ int main(int argc, char** argv) {
   options.set("cases", static_cast<long>(cases.size()));
   options.set("long_run_time_limit_s", long_time_limit);
   options.set("energy_growth_limit", growth_limit);
+  options.set("long_run_output_interval_s", long_output_interval);
   for (const auto& [name, n] : outcome_counts) counts.set(name, n);
   JsonObject run;
   run.set("study", "ancf-study-stability");
