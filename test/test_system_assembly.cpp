@@ -3,6 +3,7 @@
 // of internal forces in a free system, and redundancy detection.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstdio>
 #include <random>
 
@@ -222,6 +223,51 @@ TEST(Redundancy, IsReportedByName) {
   }
   // A well-posed scene passes (no exception).
   EXPECT_NO_THROW((void)multibody_scene(JointVariant::revolute));
+}
+
+// Many independent cables (K = 1000, each pinned at both ends: 6000 constraint rows): the check
+// works group by group (rows sharing no column are independent), so it is fast (it was a dense
+// Gram–Schmidt over all rows, O(K³): minutes here), and a redundancy inside one group is still
+// found and attributed to the constraints of that group only, in row order.
+TEST(Redundancy, ManyIndependentCablesAreCheckedGroupByGroup) {
+  CableSection s;
+  s.axial_stiffness = 1e3;
+  s.mass_per_length = 0.1;
+  constexpr int kCables = 1000;
+  auto build = [&](bool redundant) {
+    ModelBuilder b;
+    for (int k = 0; k < kCables; ++k) {
+      const Vec3 start(0.0, static_cast<double>(k), 0.0);
+      const std::string name = "cable " + std::to_string(k);
+      const Index c = b.add_cable(name, straight_cable(start, start + Vec3::UnitX(), 1), s);
+      b.pin(name + " start", {c, 0}, start);
+      b.pin(name + " end", {c, -1}, start + Vec3::UnitX());
+      if (redundant && (k == 300 || k == 700))
+        b.pin(name + " again", {c, -1}, start + Vec3::UnitX());
+    }
+    return b.finalize();
+  };
+  const auto begin = std::chrono::steady_clock::now();
+  const Model model = build(false);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  std::printf("  finalize of %d pinned cables: %.3f s\n", kCables, seconds);
+  EXPECT_EQ(model.multiplier_count(), 6 * kCables);
+  EXPECT_LT(seconds, 10.0);  // ~0.05 s in Release; the dense check needed minutes
+  try {
+    (void)build(true);
+    FAIL() << "expected ModelError";
+  } catch (const ModelError& e) {
+    const std::string msg = e.what();
+    const std::size_t first = msg.find("'cable 300 again'"), second = msg.find("'cable 700 again'");
+    ASSERT_NE(first, std::string::npos) << msg;
+    ASSERT_NE(second, std::string::npos) << msg;
+    EXPECT_LT(first, second) << msg;  // row order
+    EXPECT_NE(msg.find("'cable 300 end'"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("'cable 700 end'"), std::string::npos) << msg;
+    EXPECT_EQ(msg.find("start'"), std::string::npos) << msg;  // other groups are not partners
+    EXPECT_EQ(msg.find("'cable 299"), std::string::npos) << msg;
+  }
 }
 
 }  // namespace
