@@ -14,6 +14,7 @@
 // Usage: ancf-study-scaling [--out DIR] [--steps N] [--ida-t-end T] [--ida-rtol R]
 //                           [--ida-max-order K] [--min-seconds S] [--max-elements N]
 //                           [--integrator genalpha|ida|both] [--ida-model-scales]
+//                           [--elements 10,30,...] [--cables 1,2,...]
 // Writes DIR/scaling.csv, DIR/scaling_fits.csv and DIR/run.json (default DIR out/scaling).
 #include <fmt/format.h>
 
@@ -21,6 +22,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -57,6 +59,8 @@ struct Options {
   int ida_max_order = 2;
   double min_seconds = 0.3;  // timed integration per case, at least
   Index max_elements = 10000;
+  std::vector<Index> element_counts = {10, 30, 100, 300, 1000, 3000, 10000};  // one string
+  std::vector<Index> cable_counts = {1, 2, 4, 8, 16, 32};                     // of 100 elements
   bool genalpha = true, ida = true;
   // IDA's tolerance scales (GglScales): by default those of one 100-element string for every
   // case; with --ida-model-scales each model derives its own (see run_ida).
@@ -75,26 +79,41 @@ struct CaseResult {
   long steps = 0, newton_iterations = 0, residual_evaluations = 0, matrix_evaluations = 0;
   long factorizations = 0, convergence_failures = 0, error_test_failures = 0;
   int repeats = 0;
-  double median_seconds = 0.0;   // one integration, median of the repeats
-  double fastest_seconds = 0.0;  // the fastest repeat: least disturbed by other jobs
-  double setup_seconds = 0.0;    // model build (finalize)
+  double median_seconds = 0.0;       // one integration, median of the repeats
+  double fastest_seconds = 0.0;      // the fastest repeat: least disturbed by other jobs
+  double fastest_cpu_seconds = 0.0;  // smallest CPU time of one integration over the repeats
+  double setup_seconds = 0.0;        // model build (finalize)
 };
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+// CPU time of this process [s]. Beside the wall time because the machine is shared: waiting for
+// a core while other jobs run adds wall time but no CPU time (cache sharing still adds some).
+double cpu_seconds() {
+  timespec ts{};
+  ::clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+// Wall and CPU seconds of one timed integration.
+struct Timing {
+  double wall = 0.0, cpu = 0.0;
+};
+
 // One generalized-α integration over opt.genalpha_steps nominal steps; the counters of the steps
 // only (initialize's index-1 solve and factorization subtracted).
-double run_genalpha(const ancf::Model& model, const Options& opt, CaseResult& r) {
+Timing run_genalpha(const ancf::Model& model, const Options& opt, CaseResult& r) {
   ancf::MultibodyProblem problem(model);
   ancf::GeneralizedAlphaOptions o;  // defaults: h = 1e-3, ρ∞ = 0.8, modified Newton, rtol 1e-6
   ancf::GeneralizedAlphaStepper stepper(problem, o);
   stepper.initialize(0.0);
   const ancf::GeneralizedAlphaStatistics s0 = stepper.statistics();
   const auto start = Clock::now();
+  const double cpu_start = cpu_seconds();
   stepper.advance_to(static_cast<double>(opt.genalpha_steps) * o.step_size);
-  const double seconds = seconds_since(start);
+  const Timing timing{seconds_since(start), cpu_seconds() - cpu_start};
   const ancf::GeneralizedAlphaStatistics& s = stepper.statistics();
   r.unknowns = problem.system_size();
   r.nonzeros = problem.iteration_pattern().nonzeros();
@@ -105,7 +124,7 @@ double run_genalpha(const ancf::Model& model, const Options& opt, CaseResult& r)
   r.factorizations = s.factorizations - s0.factorizations;
   r.convergence_failures = s.convergence_failures - s0.convergence_failures;
   r.error_test_failures = s.step_halvings - s0.step_halvings;  // the stepper's only "rejection"
-  return seconds;
+  return timing;
 }
 
 // One IDA integration to opt.ida_t_end (consistent initial values in the constructor, untimed).
@@ -114,15 +133,16 @@ double run_genalpha(const ancf::Model& model, const Options& opt, CaseResult& r)
 // T = L / √(2E/m), so the slope-velocity scale 1/T shrinks like 1/L as a string gets longer and
 // its tolerance tightens although each element's motion is unchanged. To compare like with like,
 // every case gets the scales of the one-string 100-element model unless --ida-model-scales.
-double run_ida(const ancf::Model& model, const Options& opt, CaseResult& r) {
+Timing run_ida(const ancf::Model& model, const Options& opt, CaseResult& r) {
   ancf::GglProblem problem(model, opt.ida_model_scales ? ancf::GglScales{} : opt.ida_scales);
   ancf::IdaOptions o;
   o.rtol = opt.ida_rtol;
   o.max_order = opt.ida_max_order;
   ancf::IdaIntegrator ida(problem, o);
   const auto start = Clock::now();
+  const double cpu_start = cpu_seconds();
   ida.advance(opt.ida_t_end);
-  const double seconds = seconds_since(start);
+  const Timing timing{seconds_since(start), cpu_seconds() - cpu_start};
   const ancf::IdaStatistics s = ida.statistics();
   r.unknowns = problem.size();
   r.nonzeros = problem.jacobian_pattern().nonzeros();
@@ -133,7 +153,7 @@ double run_ida(const ancf::Model& model, const Options& opt, CaseResult& r) {
   r.factorizations = s.linear_solver_setups;
   r.convergence_failures = s.convergence_failures;
   r.error_test_failures = s.error_test_failures;
-  return seconds;
+  return timing;
 }
 
 CaseResult measure_case(Integrator integrator, Index elements, Index cables, const Options& opt) {
@@ -141,18 +161,20 @@ CaseResult measure_case(Integrator integrator, Index elements, Index cables, con
   const auto build = Clock::now();
   const ancf::Model model = ancf::studies::taut_strings_model(elements, cables);
   r.setup_seconds = seconds_since(build);
-  std::vector<double> times;
+  std::vector<double> walls, cpus;
   double total = 0.0;
-  while (total < opt.min_seconds && times.size() < 51) {
-    const double t =
+  do {  // at least one integration, then repeats until min_seconds were timed
+    const Timing t =
         integrator == Integrator::genalpha ? run_genalpha(model, opt, r) : run_ida(model, opt, r);
-    times.push_back(t);
-    total += t;
-  }
-  std::sort(times.begin(), times.end());
-  r.repeats = static_cast<int>(times.size());
-  r.median_seconds = times[times.size() / 2];
-  r.fastest_seconds = times.front();
+    walls.push_back(t.wall);
+    cpus.push_back(t.cpu);
+    total += t.wall;
+  } while (total < opt.min_seconds && walls.size() < 51);
+  std::sort(walls.begin(), walls.end());
+  r.repeats = static_cast<int>(walls.size());
+  r.median_seconds = walls[walls.size() / 2];
+  r.fastest_seconds = walls.front();
+  r.fastest_cpu_seconds = *std::min_element(cpus.begin(), cpus.end());
   return r;
 }
 
@@ -165,6 +187,9 @@ struct Row {
   // Time per step of the fastest repeat: on a shared machine other jobs only ever add time.
   [[nodiscard]] double per_step() const {
     return result.fastest_seconds / static_cast<double>(result.steps);
+  }
+  [[nodiscard]] double cpu_per_step() const {
+    return result.fastest_cpu_seconds / static_cast<double>(result.steps);
   }
   [[nodiscard]] Index total_elements() const { return elements_per_cable * cables; }
 };
@@ -208,6 +233,18 @@ std::string source_commit() {
   return commit.empty() ? "unknown" : commit;
 }
 
+// "10,30,100" → {10, 30, 100}; an empty string gives an empty list (that sweep is skipped).
+std::vector<Index> parse_list(const std::string& text) {
+  std::vector<Index> values;
+  std::size_t begin = 0;
+  while (begin < text.size()) {
+    const std::size_t end = std::min(text.find(',', begin), text.size());
+    values.push_back(std::stol(text.substr(begin, end - begin)));
+    begin = end + 1;
+  }
+  return values;
+}
+
 Options parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
@@ -230,6 +267,10 @@ Options parse(int argc, char** argv) {
       o.min_seconds = std::stod(value());
     else if (arg == "--max-elements")
       o.max_elements = std::stol(value());
+    else if (arg == "--elements")
+      o.element_counts = parse_list(value());
+    else if (arg == "--cables")
+      o.cable_counts = parse_list(value());
     else if (arg == "--ida-model-scales")
       o.ida_model_scales = true;
     else if (arg == "--integrator") {
@@ -243,7 +284,7 @@ Options parse(int argc, char** argv) {
           "; usage: ancf-study-scaling [--out DIR] [--steps N] "
           "[--ida-t-end T] [--ida-rtol R] [--ida-max-order K] "
           "[--min-seconds S] [--max-elements N] [--integrator genalpha|ida|both] "
-          "[--ida-model-scales]");
+          "[--ida-model-scales] [--elements LIST] [--cables LIST]");
   }
   return o;
 }
@@ -266,15 +307,16 @@ int main(int argc, char** argv) try {
     Index elements, cables;
   };
   std::vector<Plan> plan;
-  for (Index n : {10, 30, 100, 300, 1000, 3000, 10000})
+  for (const Index n : opt.element_counts)
     if (n <= opt.max_elements) plan.push_back({"elements", n, 1});
-  for (Index k : {1, 2, 4, 8, 16, 32})
+  for (const Index k : opt.cable_counts)
     if (100 * k <= opt.max_elements) plan.push_back({"cables", 100, k});
 
   std::vector<Row> rows;
-  fmt::print("{:>8} {:>8} {:>6} {:>6} {:>8} {:>9} {:>6} {:>7} {:>6} {:>6} {:>11} {:>10} {:>9}\n",
-             "method", "sweep", "N/cab", "cables", "unknowns", "nonzeros", "steps", "newton", "jac",
-             "fact", "s/step", "us/el/step", "MiB");
+  fmt::print(
+      "{:>8} {:>8} {:>6} {:>6} {:>8} {:>9} {:>5} {:>6} {:>5} {:>5} {:>10} {:>9} {:>9} {:>6}\n",
+      "method", "sweep", "N/cab", "cables", "unknowns", "nonzeros", "steps", "newton", "jac",
+      "fact", "wall/step", "us/el/st", "cpu us/el", "MiB");
   for (const Integrator integrator : {Integrator::genalpha, Integrator::ida}) {
     if (!(integrator == Integrator::genalpha ? opt.genalpha : opt.ida)) continue;
     for (const Plan& p : plan) {
@@ -290,11 +332,13 @@ int main(int argc, char** argv) try {
           p.elements,     p.cables,
           outcome.result, static_cast<double>(outcome.max_rss_kib - baseline_kib) / 1024.0};
       const CaseResult& r = row.result;
-      fmt::print("{:>8} {:>8} {:6} {:6} {:8} {:9} {:6} {:7} {:6} {:6} {:11.4e} {:10.3f} {:9.1f}\n",
-                 name(integrator), p.sweep, p.elements, p.cables, r.unknowns, r.nonzeros, r.steps,
-                 r.newton_iterations, r.matrix_evaluations, r.factorizations, row.per_step(),
-                 1e6 * row.per_step() / static_cast<double>(row.total_elements()),
-                 row.rss_increment_mib);
+      const double elements = static_cast<double>(row.total_elements());
+      fmt::print(
+          "{:>8} {:>8} {:6} {:6} {:8} {:9} {:5} {:6} {:5} {:5} {:10.3e} {:9.3f} {:9.3f} {:6.1f}\n",
+          name(integrator), p.sweep, p.elements, p.cables, r.unknowns, r.nonzeros, r.steps,
+          r.newton_iterations, r.matrix_evaluations, r.factorizations, row.per_step(),
+          1e6 * row.per_step() / elements, 1e6 * row.cpu_per_step() / elements,
+          row.rss_increment_mib);
       std::fflush(stdout);
       rows.push_back(row);
     }
@@ -304,60 +348,72 @@ int main(int argc, char** argv) try {
   csv << "integrator,sweep,elements_per_cable,cables,elements,unknowns,nonzeros,steps,"
          "newton_iterations,residual_evaluations,matrix_evaluations,factorizations,"
          "convergence_failures,rejected_steps,repeats,median_seconds_per_run,"
-         "fastest_seconds_per_run,seconds_per_step,"
-         "us_per_element_step,setup_seconds,peak_rss_increment_mib\n";
+         "fastest_seconds_per_run,fastest_cpu_seconds_per_run,seconds_per_step,"
+         "cpu_seconds_per_step,us_per_element_step,cpu_us_per_element_step,setup_seconds,"
+         "peak_rss_increment_mib\n";
   for (const Row& row : rows) {
     const CaseResult& r = row.result;
-    csv << fmt::format(
-        "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.6e},{:.6e},{:.6e},{:.6f},{:.6e},{:.3f}\n",
-        name(row.integrator), row.sweep, row.elements_per_cable, row.cables, row.total_elements(),
-        r.unknowns, r.nonzeros, r.steps, r.newton_iterations, r.residual_evaluations,
-        r.matrix_evaluations, r.factorizations, r.convergence_failures, r.error_test_failures,
-        r.repeats, r.median_seconds, r.fastest_seconds, row.per_step(),
-        1e6 * row.per_step() / static_cast<double>(row.total_elements()), r.setup_seconds,
-        row.rss_increment_mib);
+    const double elements = static_cast<double>(row.total_elements());
+    csv << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},", name(row.integrator),
+                       row.sweep, row.elements_per_cable, row.cables, row.total_elements(),
+                       r.unknowns, r.nonzeros, r.steps, r.newton_iterations, r.residual_evaluations,
+                       r.matrix_evaluations, r.factorizations, r.convergence_failures,
+                       r.error_test_failures, r.repeats);
+    csv << fmt::format("{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6f},{:.6f},{:.6e},{:.3f}\n",
+                       r.median_seconds, r.fastest_seconds, r.fastest_cpu_seconds, row.per_step(),
+                       row.cpu_per_step(), 1e6 * row.per_step() / elements,
+                       1e6 * row.cpu_per_step() / elements, r.setup_seconds, row.rss_increment_mib);
   }
 
-  // Growth exponents over each sweep (x = elements of the one string, or cables): of the time per
-  // step over all sizes and over the sizes with >= 100 elements in all (below that a fixed cost
-  // per step, independent of N, is a visible share), and the peak memory as a line a + b·N_total
-  // (the increment of a small case is mostly that fixed part a, so a log slope would mislead).
+  // Growth exponents over each sweep (x = elements of the one string, or cables): of the wall and
+  // the CPU time per step over all sizes and over the sizes with >= 100 elements in all (below
+  // that a fixed cost per step, independent of N, is a visible share), and the peak memory as a
+  // line a + b·N_total (the increment of a small case is mostly the fixed part a, so a log slope
+  // would mislead).
   std::ofstream fits(opt.out + "/scaling_fits.csv");
-  fits << "integrator,sweep,time_exponent_all,time_exponent_from_100,sizes,"
-          "memory_fixed_mib,memory_kib_per_element\n";
+  fits << "integrator,sweep,sizes,wall_exponent_all,wall_exponent_from_100,cpu_exponent_all,"
+          "cpu_exponent_from_100,memory_fixed_mib,memory_kib_per_element\n";
   ancf::JsonObject exponents;
   fmt::print(
       "\ngrowth of the time per step, t ~ x^p (least squares of log t vs log x; linear: p = 1),"
       "\nand peak memory increment = a + b N_elements (least squares)\n");
   for (const Integrator integrator : {Integrator::genalpha, Integrator::ida}) {
     for (const std::string sweep : {"elements", "cables"}) {
-      std::vector<double> x, time, x_big, time_big, n, memory;
+      std::vector<double> x, wall, cpu, x_big, wall_big, cpu_big, n, memory;
       for (const Row& row : rows) {
         if (row.integrator != integrator || row.sweep != sweep) continue;
         const double xi =
             static_cast<double>(sweep == "elements" ? row.elements_per_cable : row.cables);
         x.push_back(xi);
-        time.push_back(row.per_step());
+        wall.push_back(row.per_step());
+        cpu.push_back(row.cpu_per_step());
         if (row.total_elements() >= 100) {
           x_big.push_back(xi);
-          time_big.push_back(row.per_step());
+          wall_big.push_back(row.per_step());
+          cpu_big.push_back(row.cpu_per_step());
         }
         n.push_back(static_cast<double>(row.total_elements()));
         memory.push_back(row.rss_increment_mib);
       }
       if (x.size() < 2) continue;
-      const double p_all = log_log_slope(x, time);
-      const double p_big = x_big.size() >= 2 ? log_log_slope(x_big, time_big) : NAN;
+      const bool big = x_big.size() >= 2;
+      const double wall_all = log_log_slope(x, wall), cpu_all = log_log_slope(x, cpu);
+      const double wall_100 = big ? log_log_slope(x_big, wall_big) : NAN;
+      const double cpu_100 = big ? log_log_slope(x_big, cpu_big) : NAN;
       const Line mem = fit_line(n, memory);
       fmt::print(
-          "  {:8} over {:8}: p = {:.3f} (all {} sizes), p = {:.3f} (>= 100 elements); memory "
-          "{:.2f} MiB + {:.2f} KiB/element\n",
-          name(integrator), sweep, p_all, x.size(), p_big, mem.intercept, 1024.0 * mem.slope);
-      fits << fmt::format("{},{},{:.4f},{:.4f},{},{:.4f},{:.4f}\n", name(integrator), sweep, p_all,
-                          p_big, x.size(), mem.intercept, 1024.0 * mem.slope);
+          "  {:8} over {:8} ({} sizes): wall p = {:.3f}, from 100 elements {:.3f}; CPU p = {:.3f}, "
+          "from 100 elements {:.3f}; memory {:.2f} MiB + {:.2f} KiB/element\n",
+          name(integrator), sweep, x.size(), wall_all, wall_100, cpu_all, cpu_100, mem.intercept,
+          1024.0 * mem.slope);
+      fits << fmt::format("{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f}\n", name(integrator),
+                          sweep, x.size(), wall_all, wall_100, cpu_all, cpu_100, mem.intercept,
+                          1024.0 * mem.slope);
       const std::string key = fmt::format("{}_{}", name(integrator), sweep);
-      exponents.set(key + "_time_exponent_all", p_all)
-          .set(key + "_time_exponent_from_100", p_big)
+      exponents.set(key + "_wall_exponent_all", wall_all)
+          .set(key + "_wall_exponent_from_100", wall_100)
+          .set(key + "_cpu_exponent_all", cpu_all)
+          .set(key + "_cpu_exponent_from_100", cpu_100)
           .set(key + "_memory_kib_per_element", 1024.0 * mem.slope);
     }
   }
