@@ -658,6 +658,25 @@ TEST(GeneralizedAlpha, NoSliverStepsBeforeOutputTimes) {
   EXPECT_EQ(stepper.statistics().steps, 40);
 }
 
+// Far from t = 0 the accumulated round-off of t += h (ulp(1e4 s) = 1.8e-12 s per addition) would
+// leave t more than 1e-8 h off the output grid after a few hundred steps, so every output would
+// end with two half steps and a restart. The stepper computes t = t_base + n h instead.
+TEST(GeneralizedAlpha, OutputGridHeldAtLargeTimes) {
+  const Model model = rigid_pendulum_model({});
+  MultibodyProblem problem(model);
+  const double h = 1e-3, t0 = 1e4;
+  GeneralizedAlphaStepper stepper(problem, tight(h, 0.8));
+  stepper.initialize(t0);
+  for (int i = 1; i <= 4; ++i) {
+    stepper.advance_to(t0 + 0.5 * i);
+    EXPECT_EQ(stepper.time(), t0 + 0.5 * i);
+  }
+  std::printf("4 outputs of 500 steps from t = 1e4 s: %ld steps, %ld restarts, smallest step %.6e\n",
+              stepper.statistics().steps, stepper.statistics().restarts, stepper.statistics().min_step);
+  EXPECT_EQ(stepper.statistics().steps, 2000);
+  EXPECT_EQ(stepper.statistics().restarts, 1);
+}
+
 // --- agreement with IDA
 // ---------------------------------------------------------------------------
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "ancf/core/error.hpp"
@@ -159,6 +160,8 @@ void GeneralizedAlphaStepper::initialize(double t0, const VecX& q0, const VecX& 
   klu_base_[3] = projector_.refactorizations();
   ScopedTimer timer(stats_.wall_seconds);
   t_ = t0;
+  t_base_ = t0;
+  steps_from_base_ = 0;
   q_ = q0;
   v_ = v0;
   project_positions(t0, q_, 20);
@@ -284,6 +287,23 @@ void GeneralizedAlphaStepper::update_weights(double gamma_prime) {
                                                         lambda1_.lpNorm<Eigen::Infinity>()));
 }
 
+namespace {
+
+/// max |x_i| and its index, a non-finite entry counting as +∞ (Eigen's maxCoeff is unspecified
+/// with NaN, and a failure message must name the row the NaN is in).
+double largest_entry(const Eigen::ArrayXd& x, Index& index) {
+  index = 0;
+  double largest = -1.0;
+  for (Index i = 0; i < x.size(); ++i) {
+    const double a = std::isfinite(x[i]) ? std::abs(x[i]) : std::numeric_limits<double>::infinity();
+    if (a > largest) largest = a, index = i;
+    if (a == std::numeric_limits<double>::infinity()) break;
+  }
+  return std::max(largest, 0.0);
+}
+
+}  // namespace
+
 double GeneralizedAlphaStepper::increment_norm(Index* worst) const {
   // Largest of the weighted RMS norms of Δq (increment_), Δv = γ'δ (δ = rhs_ head, γ' folded into
   // weight_v_) and Δλ (rhs_ tail).
@@ -295,9 +315,9 @@ double GeneralizedAlphaStepper::increment_norm(Index* worst) const {
   if (worst) {
     // Only for error messages: the component with the largest weighted increment.
     Index iq = 0, iv = 0, il = 0;
-    const double wq = (increment_.array() * weight_q_).abs().maxCoeff(&iq);
-    const double wv = (rhs_.head(n_).array() * weight_v_).abs().maxCoeff(&iv);
-    const double wl = m_ == 0 ? 0.0 : rhs_.tail(m_).cwiseAbs().maxCoeff(&il) * weight_lambda_;
+    const double wq = largest_entry(increment_.array() * weight_q_, iq);
+    const double wv = largest_entry(rhs_.head(n_).array() * weight_v_, iv);
+    const double wl = m_ == 0 ? 0.0 : largest_entry(rhs_.tail(m_).array(), il) * weight_lambda_;
     *worst = wl > std::max(wq, wv) ? n_ + il : (wq >= wv ? iq : iv);
   }
   return std::max({nq, nv, nl});
@@ -427,10 +447,18 @@ void GeneralizedAlphaStepper::step(double t_limit) {
     // sliver: a sliver (t drifts against the output grid after halvings) restarts the scheme at
     // a tiny h, where the index-3 multipliers carry round-off amplified by h⁻² and Newton fails.
     const bool snap = std::abs(remaining - h_) <= 1e-8 * h_;
-    const double h = snap ? h_ : remaining < h_ ? remaining : remaining < 1.5 * h_ ? 0.5 * remaining : h_;
+    const double h = snap                   ? h_
+                     : remaining < h_       ? remaining
+                     : remaining < 1.5 * h_ ? 0.5 * remaining
+                                            : h_;
     const bool last = snap || h == remaining;
     change_step_size(h);
-    const double t1 = last ? t_limit : t_ + h;
+    // t = t_base + n h (one rounding) rather than t += h (n roundings): far from t = 0 the
+    // accumulated round-off would otherwise exceed the snap tolerance within an output interval.
+    const bool on_base = h == base_h_;
+    const double t1 = last      ? t_limit
+                      : on_base ? t_base_ + static_cast<double>(steps_from_base_ + 1) * h
+                                : t_ + h;
     predict(h);
     const Outcome outcome = newton(t1, h);
     if (outcome == Outcome::converged) {
@@ -444,6 +472,13 @@ void GeneralizedAlphaStepper::step(double t_limit) {
       have_previous_ = true;
       previous_h_ = h;
       t_ = t1;
+      if (on_base && !last) {
+        ++steps_from_base_;
+      } else {
+        t_base_ = t1;
+        base_h_ = h;
+        steps_from_base_ = 0;
+      }
       ++stats_.steps;
       stats_.min_step = std::min(stats_.min_step, h);
       ++matrix_age_;

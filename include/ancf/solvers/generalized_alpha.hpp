@@ -210,7 +210,10 @@ class GeneralizedAlphaStepper {
   // Scratch.
   VecX residual_, rhs_, values_, projector_values_, velocity_residual_, increment_, phi_;
 
-  double h_ = 0.0;            // current step size
+  double h_ = 0.0;       // current step size
+  double t_base_ = 0.0;  // t_ = t_base_ + steps_from_base_ · base_h_ (see step())
+  double base_h_ = -1.0;
+  long steps_from_base_ = 0;
   double a_h_ = 0.0;          // step size a_ is calibrated to (a ≈ q''(t + (α_m − α_f)h))
   double matrix_h_ = -1.0;    // h the factorized matrix was built for (−1: none)
   int matrix_age_ = 0;        // accepted steps since the matrix was built
