@@ -21,7 +21,7 @@
 //        (default: all groups)
 // Writes <out>/cases.csv (one row per case), <out>/long_run_wall.csv (wall time per tenth of the
 // long runs), <out>/long_run_series.csv (their energy error and |Φ| every 1 s) and <out>/run.json
-// (options, outcome counts).
+// (options, outcome counts). Exit status 0, or 3 if any case blew up.
 #include <fmt/format.h>
 #include <fmt/os.h>
 
@@ -316,5 +316,8 @@ int main(int argc, char** argv) {
   fmt::print("\noutcomes:");
   for (const auto& [name, n] : outcome_counts) fmt::print("  {}: {}", name, n);
   fmt::print("\nwrote {}/cases.csv, long_run_wall.csv, run.json\n", out_dir.string());
+  // Exit status 3 if any case blew up, so that a smoke run in the test suite fails on a blow-up.
+  for (const auto& [name, n] : outcome_counts)
+    if (name.starts_with("blow-up") && n > 0) return 3;
   return 0;
 }
