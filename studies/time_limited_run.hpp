@@ -1,4 +1,5 @@
-// Run one study case in a forked child process under a wall-time limit.
+// Run one study case in a forked child process under a wall-time limit, and read the child's
+// peak memory (shared by the stability study and, through child_process.hpp, the scaling study).
 //
 // Why a child: a stress case may hang (a solver that makes no progress), crash (a signal) or run
 // far too long; in-process, none of these can be stopped or told apart from the study itself.
@@ -9,6 +10,7 @@
 #pragma once
 
 #include <sys/mman.h>
+#include <sys/resource.h>
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -35,11 +37,12 @@ struct TimeLimitedResult {
   ChildEnd end = ChildEnd::returned;
   int signal = 0;             ///< the signal for ChildEnd::signalled
   double wall_seconds = 0.0;  ///< measured by the parent, fork to reap
+  long max_rss_kib = 0;       ///< the child's peak resident set (wait4's ru_maxrss, KiB on Linux)
   Report report{};
 };
 
-/// Runs `run_case(Report&)` in a child; `report` starts value-initialized. Throws
-/// std::runtime_error only if fork or mmap fail.
+/// Runs `run_case(Report&)` in a child; `report` starts value-initialized. `limit_seconds` may be
+/// +∞ (no limit). Throws std::runtime_error only if fork or mmap fail.
 template <class Report, class Function>
 TimeLimitedResult<Report> run_with_time_limit(Function&& run_case, double limit_seconds) {
   static_assert(std::is_trivially_copyable_v<Report>);
@@ -66,14 +69,15 @@ TimeLimitedResult<Report> run_with_time_limit(Function&& run_case, double limit_
   }
   TimeLimitedResult<Report> result;
   int status = 0;
+  struct rusage usage {};
   for (;;) {
-    const pid_t done = waitpid(pid, &status, WNOHANG);
+    const pid_t done = wait4(pid, &status, WNOHANG, &usage);
     const double elapsed =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (done == pid) break;
     if (elapsed > limit_seconds) {
       kill(pid, SIGKILL);
-      waitpid(pid, &status, 0);
+      wait4(pid, &status, 0, &usage);
       result.end = ChildEnd::time_limit;
       break;
     }
@@ -81,6 +85,7 @@ TimeLimitedResult<Report> run_with_time_limit(Function&& run_case, double limit_
   }
   result.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.max_rss_kib = usage.ru_maxrss;
   if (result.end != ChildEnd::time_limit) {
     if (WIFSIGNALED(status)) {
       result.end = ChildEnd::signalled;
