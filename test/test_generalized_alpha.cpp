@@ -671,8 +671,9 @@ TEST(GeneralizedAlpha, OutputGridHeldAtLargeTimes) {
     stepper.advance_to(t0 + 0.5 * i);
     EXPECT_EQ(stepper.time(), t0 + 0.5 * i);
   }
-  std::printf("4 outputs of 500 steps from t = 1e4 s: %ld steps, %ld restarts, smallest step %.6e\n",
-              stepper.statistics().steps, stepper.statistics().restarts, stepper.statistics().min_step);
+  std::printf(
+      "4 outputs of 500 steps from t = 1e4 s: %ld steps, %ld restarts, smallest step %.6e\n",
+      stepper.statistics().steps, stepper.statistics().restarts, stepper.statistics().min_step);
   EXPECT_EQ(stepper.statistics().steps, 2000);
   EXPECT_EQ(stepper.statistics().restarts, 1);
 }

@@ -70,10 +70,10 @@ TEST(ElasticCatenary, ClosedFormReproducesReferenceTable) {
   struct Row {
     double ea, h, sag, tension;
   };
-  for (const Row& r : {Row{std::numeric_limits<double>::infinity(), 0.3317760434, 0.2654375091,
-                           0.5921702398},
-                       Row{1e6, 0.3317755842, 0.2654378376, 0.5921699826},
-                       Row{1e3, 0.3313180182, 0.2657655657, 0.5919137430}}) {
+  for (const Row& r :
+       {Row{std::numeric_limits<double>::infinity(), 0.3317760434, 0.2654375091, 0.5921702398},
+        Row{1e6, 0.3317755842, 0.2654378376, 0.5921699826},
+        Row{1e3, 0.3313180182, 0.2657655657, 0.5919137430}}) {
     ElasticCatenarySpec spec;
     spec.axial_stiffness = r.ea;
     const CatenaryValues v = irvine_catenary(spec);
@@ -90,8 +90,10 @@ TEST(ElasticCatenary, SagAndSupportTensionWithin1e4Relative) {
     const CatenarySolution sol = solve_elastic_catenary(spec, n);
     const double e_sag = std::abs(sol.sag / ref.sag - 1);
     const double e_t = std::abs(sol.tension_left / ref.support_tension - 1);
-    std::printf("catenary %2ld elements: sag rel. error %.2e, support tension rel. error %.2e (%d Newton)\n",
-                static_cast<long>(n), e_sag, e_t, sol.stats.newton_iterations);
+    std::printf(
+        "catenary %2ld elements: sag rel. error %.2e, support tension rel. error %.2e (%d "
+        "Newton)\n",
+        static_cast<long>(n), e_sag, e_t, sol.stats.newton_iterations);
     EXPECT_LT(e_sag, 1e-4);
     EXPECT_LT(e_t, 1e-4);
     EXPECT_NEAR(sol.tension_left, sol.tension_right, 1e-12 * ref.support_tension);  // symmetry

@@ -55,7 +55,9 @@ void ModelBuilder::check_redundancy(const Model& m) {
 
   auto owner = [&](Index row) -> const ConstraintData& {
     for (const ConstraintData& c : m.constraints_)
-      if (m.n_coordinates_ + row >= c.first_row && m.n_coordinates_ + row < c.first_row + c.row_count) return c;
+      if (m.n_coordinates_ + row >= c.first_row &&
+          m.n_coordinates_ + row < c.first_row + c.row_count)
+        return c;
     return m.constraints_.front();
   };
 
@@ -99,7 +101,8 @@ void ModelBuilder::check_redundancy(const Model& m) {
       std::set<std::string> partners;
       if (!accepted.empty()) {
         MatX a(next, static_cast<Index>(accepted.size()));
-        for (std::size_t k = 0; k < accepted.size(); ++k) a.col(k) = jac.row(accepted[k]).transpose();
+        for (std::size_t k = 0; k < accepted.size(); ++k)
+          a.col(k) = jac.row(accepted[k]).transpose();
         const VecX coef = a.colPivHouseholderQr().solve(jac.row(g).transpose());
         for (std::size_t k = 0; k < accepted.size(); ++k)
           if (std::abs(coef[k]) > 1e-8 * coef.cwiseAbs().maxCoeff())
@@ -107,8 +110,10 @@ void ModelBuilder::check_redundancy(const Model& m) {
       }
       const Index i = group[g];
       const ConstraintData& c = owner(i);
-      std::string line = "\n  constraint '" + c.name + "' row " + std::to_string(m.n_coordinates_ + i - c.first_row) +
-                         (norm == 0.0 ? " has a zero Jacobian row" : " is a combination of rows of:");
+      std::string line =
+          "\n  constraint '" + c.name + "' row " +
+          std::to_string(m.n_coordinates_ + i - c.first_row) +
+          (norm == 0.0 ? " has a zero Jacobian row" : " is a combination of rows of:");
       for (const std::string& p : partners) line += " '" + p + "'";
       findings[i] = line;
     }
@@ -116,7 +121,8 @@ void ModelBuilder::check_redundancy(const Model& m) {
   std::string report;
   for (const auto& [row, line] : findings) report += line;
   if (!report.empty())
-    throw ModelError("redundant constraints at the initial configuration (remove or replace them):" + report);
+    throw ModelError(
+        "redundant constraints at the initial configuration (remove or replace them):" + report);
 }
 
 }  // namespace ancf

@@ -132,7 +132,7 @@ NaturalModes natural_modes(const Model& model, const SystemState& equilibrium,
       throw std::runtime_error("natural_modes: eigen-solver failed");
     const Index count = eig.eigenvalues().size();
     out.omega_squared.resize(count);
-    local.resize(k_sym.rows(), count);  // reduced coordinates (d − rank), mapped back by z below
+    local.resize(k_sym.rows(), count);   // reduced coordinates (d − rank), mapped back by z below
     for (Index i = 0; i < count; ++i) {  // ascending ω² = descending μ; φ = x/√μ (xᵀKx = 1)
       const double mu = eig.eigenvalues()[count - 1 - i];
       out.omega_squared[i] = 1.0 / mu;
