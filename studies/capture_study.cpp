@@ -191,7 +191,7 @@ int main(int argc, char** argv) {
   std::ofstream csv(o.out + "/samples.csv");
   csv << "t,ring_angle_deg,ring_rate_deg_s,drive_torque,tilt_deg,tilt_rate_deg_s,lateral_offset_mm,"
          "lateral_speed_mm_s,on_pole_1,on_pole_2,on_pole_3,pole_force_1,pole_force_2,pole_force_3,"
-         "ring_tension_1,ring_tension_2,ring_tension_3,rope_rope_force\n";
+         "ring_tension_1,ring_tension_2,ring_tension_3,rope_rope_force,pole_gap_mm_1,pole_gap_mm_2,pole_gap_mm_3\n";
 
   CaptureObserver observer(scene.model);
   std::vector<Snapshot> frames;  // every output frame (kept for the event-time snapshots)
@@ -199,12 +199,12 @@ int main(int argc, char** argv) {
   hooks.output = [&](const SystemState& state) {
     const CaptureSample& s = observer.record(state);
     csv << fmt::format("{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{},{},{},{:.6g},{:.6g},{:.6g},"
-                       "{:.6g},{:.6g},{:.6g},{:.6g}\n",
+                       "{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n",
                        s.t, s.ring_angle / kDeg, s.ring_rate / kDeg, s.drive_torque, s.tilt / kDeg,
                        s.tilt_rate / kDeg, 1e3 * s.lateral_offset, 1e3 * s.lateral_speed, int(s.rope_on_pole[0]),
                        int(s.rope_on_pole[1]), int(s.rope_on_pole[2]), s.rope_pole_force[0], s.rope_pole_force[1],
                        s.rope_pole_force[2], s.ring_end_tension[0], s.ring_end_tension[1], s.ring_end_tension[2],
-                       s.rope_rope_force);
+                       s.rope_rope_force, 1e3 * s.rope_pole_gap[0], 1e3 * s.rope_pole_gap[1], 1e3 * s.rope_pole_gap[2]);
     csv.flush();
     frames.push_back(snapshot_of(scene.model, state, ""));
   };

@@ -92,6 +92,7 @@ const CaptureSample& CaptureObserver::record(const SystemState& state) {
     const ContactPairState &shaft = pairs_[pole_pairs_[i][0]], &knob = pairs_[pole_pairs_[i][1]];
     s.rope_on_pole[i] = shaft.active || knob.active;
     s.rope_pole_force[i] = (shaft.normal_force + knob.normal_force).norm();
+    s.rope_pole_gap[i] = std::min(shaft.min_gap, knob.min_gap);
     s.ring_end_tension[i] = state.lambda.segment<3>(ring_end_rows_[i]).norm();
   }
   for (const Index p_rr : rope_pairs_) s.rope_rope_force += pairs_[p_rr].normal_force.norm();

@@ -39,6 +39,7 @@ struct CaptureSample {
   double lateral_speed = 0.0;   ///< speed of that axis point across the ring axis [m/s]
   std::array<bool, 3> rope_on_pole{};         ///< rope touches shaft or knob
   std::array<double, 3> rope_pole_force{};    ///< |normal force resultant| rope–pole [N]
+  std::array<double, 3> rope_pole_gap{};      ///< smallest sample gap rope–shaft/knob [m] (< 0: contact)
   std::array<double, 3> ring_end_tension{};   ///< |rope end force| at the rotating ring [N]
   double rope_rope_force = 0.0;               ///< sum of |normal resultants| of rope–rope pairs [N]
 };
