@@ -282,8 +282,21 @@ int main(int argc, char** argv) try {
         .set("position_scale_m", scale);
     meta.set(scene.name, sm);
 
-    for (const int order : opt.ida_orders) {
+    // One curve: measure each setting, print a line per point, fit the order, keep the points.
+    auto sweep = [&](const std::string& label, const std::vector<IntegratorSettings>& settings) {
       std::vector<Point> curve;
+      for (const IntegratorSettings& s : settings) {
+        curve.push_back(measure(scene, s, times, reference, scale));
+        const Point& p = curve.back();
+        fmt::print("  {} {} {:.3e}: error {:.3e} m, scd {:.2f}, {:.4f} s, {} steps{}\n", label,
+                   s.kind == IntegratorKind::ida ? "rtol" : "h", p.parameter, p.error, p.scd,
+                   p.wall_s, p.steps, p.failure.empty() ? "" : " FAILED: " + p.failure);
+      }
+      orders.push_back(fit(curve, scene.name, label, 4));
+      points.insert(points.end(), curve.begin(), curve.end());
+    };
+    for (const int order : opt.ida_orders) {
+      std::vector<IntegratorSettings> settings;
       for (const double rtol : rtols) {
         if (order <= 2 && rtol < 1e-7)
           continue;  // BDF2 at rtol 1e-8 needs h ~ 1e-6 s: minutes per run
@@ -292,18 +305,12 @@ int main(int argc, char** argv) try {
         s.rtol = rtol;
         s.max_order = order;
         s.max_step = 0.0;
-        curve.push_back(measure(scene, s, times, reference, scale));
-        const Point& p = curve.back();
-        fmt::print(
-            "  ida order<={} rtol {:.0e}: error {:.3e} m, scd {:.2f}, {:.4f} s, {} steps{}\n",
-            order, rtol, p.error, p.scd, p.wall_s, p.steps,
-            p.failure.empty() ? "" : " FAILED: " + p.failure);
+        settings.push_back(s);
       }
-      orders.push_back(fit(curve, scene.name, fmt::format("ida order<={}", order), 4));
-      points.insert(points.end(), curve.begin(), curve.end());
+      sweep(fmt::format("ida order<={}", order), settings);
     }
     for (const double rho : opt.rho) {
-      std::vector<Point> curve;
+      std::vector<IntegratorSettings> settings;
       for (const double h : steps) {
         IntegratorSettings s = scene.integrator;
         s.kind = IntegratorKind::genalpha;
@@ -313,15 +320,9 @@ int main(int argc, char** argv) try {
         s.perturbed_start = opt.perturbed_start;
         s.rtol = 1e-8;  // Newton: its error in q is ≈ rtol |v| h / 2 per step, far below h²
         s.ga_atol_position = 1e-10, s.ga_atol_velocity = 1e-8, s.ga_atol_multiplier = 1e-8;
-        curve.push_back(measure(scene, s, times, reference, scale));
-        const Point& p = curve.back();
-        fmt::print(
-            "  genalpha rho {:.1f} h {:.3e}: error {:.3e} m, scd {:.2f}, {:.4f} s, {} steps{}\n",
-            rho, h, p.error, p.scd, p.wall_s, p.steps,
-            p.failure.empty() ? "" : " FAILED: " + p.failure);
+        settings.push_back(s);
       }
-      orders.push_back(fit(curve, scene.name, fmt::format("genalpha rho={:.1f}", rho), 4));
-      points.insert(points.end(), curve.begin(), curve.end());
+      sweep(fmt::format("genalpha rho={:.1f}", rho), settings);
     }
   }
 
