@@ -30,14 +30,13 @@ StressScene benchmark_pendulum_scene(Index elements) {
 }
 
 StressScene steel_wire_scene(Index elements) {
-  const double e = 2.1e11, rho = 7850.0, d = 1e-3;
-  const double area = std::numbers::pi * d * d / 4.0,
-               inertia = std::numbers::pi * std::pow(d, 4) / 64.0;
+  const double e = 2.1e11, rho = 7850.0;
+  const CircularSection section = circular_section(1e-3);
   CablePendulumSpec s;
   s.length = 0.1;
-  s.axial_stiffness = e * area;
-  s.bending_stiffness = e * inertia;
-  s.mass_per_length = rho * area;
+  s.axial_stiffness = e * section.area;
+  s.bending_stiffness = e * section.second_moment;
+  s.mass_per_length = rho * section.area;
   s.elements = elements;
   s.gravity = Vec3(0.0, 0.0, -9.81);
   return {cable_pendulum_model(s), swing_potential(s)};

@@ -1,6 +1,5 @@
 // [[cable]]: geometry (straight, polyline, helix, arc), optional stress-free reference, section.
 #include <cmath>
-#include <numbers>
 
 #include <Eigen/Geometry>
 
@@ -108,7 +107,8 @@ CableSection read_section(TableReader s) {
   const auto ea = s.optional_number("EA", Range::positive);
   const auto e = s.optional_number("E", Range::positive);
   const auto d = s.optional_number("diameter", Range::positive);
-  const double area = d ? std::numbers::pi * *d * *d / 4.0 : 0.0;
+  const CircularSection round = d ? circular_section(*d) : CircularSection{};
+  const double area = round.area;
   if (ea && e) s.fail("E", "give either EA or E (with diameter), not both");
   if (ea) {
     c.axial_stiffness = *ea;
@@ -135,7 +135,7 @@ CableSection read_section(TableReader s) {
     if (ei) {
       c.bending_stiffness = *ei;
     } else if (e && d) {
-      c.bending_stiffness = *e * std::numbers::pi * std::pow(*d, 4) / 64.0;
+      c.bending_stiffness = *e * round.second_moment;
     } else {
       s.fail_here(
           "bending = true needs 'EI' [N m²], or 'E' with 'diameter' "

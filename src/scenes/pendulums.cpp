@@ -9,13 +9,12 @@
 namespace ancf {
 
 CablePendulumSpec benchmark_cable_pendulum(Index elements) {
-  const double d = 0.01, area = std::numbers::pi * d * d / 4.0;
-  const double inertia = std::numbers::pi * std::pow(d, 4) / 64.0;
+  const CircularSection section = circular_section(0.01);
   CablePendulumSpec s;
   s.length = 1.0;
-  s.axial_stiffness = 1e9 * area;
-  s.bending_stiffness = 1e9 * inertia;
-  s.mass_per_length = 8000.0 * area;
+  s.axial_stiffness = 1e9 * section.area;
+  s.bending_stiffness = 1e9 * section.second_moment;
+  s.mass_per_length = 8000.0 * section.area;
   s.elements = elements;
   s.gravity = Vec3(0.0, 0.0, -9.81);
   return s;

@@ -14,6 +14,8 @@
 #pragma once
 
 #include <array>
+#include <cmath>
+#include <numbers>
 
 #include "ancf/core/gauss_legendre.hpp"
 #include "ancf/core/types.hpp"
@@ -36,9 +38,21 @@ struct CableSection {
   double bending_damping = 0.0;    ///< c_b [N m² s]: Kelvin–Voigt bending moment c_b κ̇
   double radius = 0.0;             ///< r [m] of the cross-section; used only by contact (> 0 there)
 
-  [[nodiscard]] bool has_bending() const { return bending_stiffness > 0.0 || bending_damping > 0.0; }
+  [[nodiscard]] bool has_bending() const {
+    return bending_stiffness > 0.0 || bending_damping > 0.0;
+  }
   [[nodiscard]] bool has_damping() const { return axial_damping > 0.0 || bending_damping > 0.0; }
 };
+
+/// Area A = πd²/4 [m²] and second moment I = πd⁴/64 [m⁴] of a solid circular section of
+/// diameter d [m] (> 0): EA, EI and ρA of a round cable from E and ρ.
+struct CircularSection {
+  double area = 0.0, second_moment = 0.0;
+};
+[[nodiscard]] inline CircularSection circular_section(double diameter) {
+  return {std::numbers::pi * diameter * diameter / 4.0,
+          std::numbers::pi * std::pow(diameter, 4) / 64.0};
+}
 
 /// Number of Gauss points per element. The Green axial force integrand is a polynomial of degree
 /// 8 in ξ, which 5 points integrate exactly (DESIGN §3).
@@ -47,9 +61,9 @@ inline constexpr int kCableGaussPoints = 5;
 /// Per-element data that depend only on the stress-free reference: shape-function derivatives,
 /// integration weights and reference metric/curvature at each Gauss point. Built once per element.
 struct CableElementReference {
-  double length = 0.0;  ///< l [m]
-  std::array<Vec4, kCableGaussPoints> d1;   ///< dS/dx at the Gauss points
-  std::array<Vec4, kCableGaussPoints> d2;   ///< d²S/dx² at the Gauss points
+  double length = 0.0;                             ///< l [m]
+  std::array<Vec4, kCableGaussPoints> d1;          ///< dS/dx at the Gauss points
+  std::array<Vec4, kCableGaussPoints> d2;          ///< d²S/dx² at the Gauss points
   std::array<double, kCableGaussPoints> weight{};  ///< w_g · l · J₀_g (measure of J₀ dx)
   std::array<double, kCableGaussPoints> inv_j0{};  ///< 1/J₀_g
   std::array<double, kCableGaussPoints> kappa0{};  ///< κ₀ at the Gauss points (per strain measure)
@@ -61,7 +75,7 @@ struct CableElementReference {
 
 /// What to evaluate. Force and energy are always computed.
 struct CableEvalRequest {
-  bool stiffness = false;       ///< ∂f/∂e (includes ∂(damping force)/∂e when damping is present)
+  bool stiffness = false;  ///< ∂f/∂e (includes ∂(damping force)/∂e when damping is present)
   bool damping_matrix = false;  ///< ∂f/∂ė
 };
 
