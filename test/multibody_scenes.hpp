@@ -42,12 +42,15 @@ inline Model multibody_scene(JointVariant variant, bool ground = true) {
   s1.strain = StrainMeasure::elastic_line;
   s1.axial_stiffness = 5e3;
   s1.mass_per_length = 0.1;
+  if (ground) s1.mass_damping = 0.7;  // a drag against ground: not with the free-floating variant
   const Index c0 = b.add_cable("cable0", straight_cable(Vec3::Zero(), Vec3(1.0, 0.0, 0.0), 5), s0);
-  const Index c1 = b.add_cable("cable1", straight_cable(Vec3(0.6, 0.5, 0.2), Vec3(0.6, 0.0, 0.0), 4), s1);
+  const Index c1 =
+      b.add_cable("cable1", straight_cable(Vec3(0.6, 0.5, 0.2), Vec3(0.6, 0.0, 0.0), 4), s1);
   const Mat3 r0 = Eigen::AngleAxisd(0.3, Vec3(0.2, 1.0, 0.1).normalized()).toRotationMatrix();
   const Mat3 r1 = Eigen::AngleAxisd(-0.7, Vec3(1.0, 0.3, -0.4).normalized()).toRotationMatrix();
-  const Index b0 = b.add_body("body0", box_inertia(2.0, Vec3(0.2, 0.1, 0.1), Vec3(0.02, -0.01, 0.0)),
-                              Vec3(1.1, 0.0, 0.05), r0, Vec3(0.1, -0.2, 0.0), Vec3(0.3, 0.1, -0.5));
+  const Index b0 =
+      b.add_body("body0", box_inertia(2.0, Vec3(0.2, 0.1, 0.1), Vec3(0.02, -0.01, 0.0)),
+                 Vec3(1.1, 0.0, 0.05), r0, Vec3(0.1, -0.2, 0.0), Vec3(0.3, 0.1, -0.5));
   const Index b1 = b.add_body("body1", box_inertia(1.0, Vec3(0.1, 0.3, 0.1), Vec3(0.0, 0.03, 0.01)),
                               Vec3(1.1, 0.35, 0.05), r1, Vec3(0.0, 0.1, 0.2), Vec3(-0.2, 0.4, 0.1));
   int frame = -1;
@@ -75,10 +78,12 @@ inline Model multibody_scene(JointVariant variant, bool ground = true) {
     case JointVariant::revolute:
       if (ground) {
         b.revolute_to_ground("body0 hinge", b0, Vec3(1.15, 0.0, 0.0), axis);
-        b.add_revolute_drive("body0 drive", "body0 hinge", AngleLaw::constant_rate(0.5), 30.0, 2.0, 4.0);
+        b.add_revolute_drive("body0 drive", "body0 hinge", AngleLaw::constant_rate(0.5), 30.0, 2.0,
+                             4.0);
       }
       b.revolute("body1 hinge", b0, b1, Vec3(1.1, 0.2, 0.05), Vec3(1.0, 0.4, 0.2));
-      b.add_revolute_drive("body1 drive", "body1 hinge", AngleLaw::smooth_ramp(0.3, 0.5), 10.0, 1.0, 3.0);
+      b.add_revolute_drive("body1 drive", "body1 hinge", AngleLaw::smooth_ramp(0.3, 0.5), 10.0, 1.0,
+                           3.0);
       break;
     case JointVariant::spherical:
       if (ground) b.spherical_to_ground("body0 ball", b0, Vec3(1.2, 0.05, 0.0));
@@ -89,17 +94,18 @@ inline Model multibody_scene(JointVariant variant, bool ground = true) {
       b.fixed("body1 weld", b0, b1);
       break;
   }
-  b.add_spring_damper("body spring", BodyPoint{b0, Vec3(0.05, 0.02, 0.0)}, BodyPoint{b1, Vec3(0.0, -0.05, 0.03)},
-                      300.0, 2.0, 0.2);
+  b.add_spring_damper("body spring", BodyPoint{b0, Vec3(0.05, 0.02, 0.0)},
+                      BodyPoint{b1, Vec3(0.0, -0.05, 0.03)}, 300.0, 2.0, 0.2);
   if (ground) {
     b.set_gravity(Vec3(0.0, 0.0, -9.81));
     b.add_node_force({c0, 2}, Vec3(0.0, 1.0, -2.0));
     b.add_point_force("push", BodyPoint{b1, Vec3(0.02, 0.1, 0.0)}, Vec3::Zero(),
                       [](double t) { return Vec3(std::sin(t), 0.5, -t); });
-    b.add_body_torque("twist", b1, Vec3(0.1, -0.2, 0.3), [](double t) { return Vec3(0.1, -0.2, 0.3 * std::cos(t)); });
+    b.add_body_torque("twist", b1, Vec3(0.1, -0.2, 0.3),
+                      [](double t) { return Vec3(0.1, -0.2, 0.3 * std::cos(t)); });
     b.add_spring_damper("tether", NodeRef{c1, 1}, GroundPoint{Vec3(0.5, 0.5, -0.5)}, 100.0, 1.0);
-    b.add_spring_damper("ring spring", BodyPoint{b1, Vec3(0.0, 0.1, 0.0)}, FramePoint{frame, Vec3(0.1, 0.0, 0.1)},
-                        50.0, 0.5);
+    b.add_spring_damper("ring spring", BodyPoint{b1, Vec3(0.0, 0.1, 0.0)},
+                        FramePoint{frame, Vec3(0.1, 0.0, 0.1)}, 50.0, 0.5);
   }
   return b.finalize();
 }

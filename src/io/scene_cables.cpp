@@ -150,6 +150,7 @@ CableSection read_section(TableReader s) {
   c.bending_damping = s.number_or("bending_damping", 0.0, Range::non_negative);
   if (!bending && c.bending_damping > 0.0)
     s.fail("bending_damping", "bending damping given with bending = false");
+  c.mass_damping = s.number_or("mass_damping", 0.0, Range::non_negative);
   c.radius = s.number_or("radius", d ? *d / 2.0 : 0.0, Range::non_negative);
   s.finish();
   return c;

@@ -51,13 +51,14 @@ struct Scattered {
   double& velocity(Index s) const { return values[map.velocity[s]]; }
 };
 
-// velocity part += w_a (m4 ⊗ I₃): only the diagonal of each 3×3 block is non-zero.
+// velocity part += w (m4 ⊗ I₃): only the diagonal of each 3×3 block is non-zero (w = w_a for
+// the inertia, w_v α for mass-proportional damping).
 template <class Target>
-void add_mass_matrix(const Mat4& m4, const std::array<Index, 144>& slots, double w_a,
+void add_mass_matrix(const Mat4& m4, const std::array<Index, 144>& slots, double w,
                      const Target& t) {
   for (int s = 0; s < 4; ++s)
     for (int p = 0; p < 4; ++p)
-      for (int d = 0; d < 3; ++d) t.velocity(slots[12 * (3 * s + d) + 3 * p + d]) += w_a * m4(p, s);
+      for (int d = 0; d < 3; ++d) t.velocity(slots[12 * (3 * s + d) + 3 * p + d]) += w * m4(p, s);
 }
 
 // Scatter −scale·Q of a force element into the dynamic residual rows.
@@ -153,6 +154,8 @@ void add_iteration_matrix_to(const Model& model, const SystemState& state,
           }
         }
         if (w.w_a != 0.0) add_mass_matrix(c.mass[j], slots, w.w_a, t);
+        if (w.w_v != 0.0 && c.section.mass_damping > 0.0)  // ∂(α M v)/∂v = α M
+          add_mass_matrix(c.mass[j], slots, w.w_v * c.section.mass_damping, t);
       });
   if (w.w_a != 0.0)
     for (Index b = 0; b < static_cast<Index>(model.bodies().size()); ++b)
@@ -258,6 +261,8 @@ void assemble_residual(const Model& model, const SystemState& state, double load
         evaluate_cable_element(c.section, c.elements[j], e, e_dot, {}, ws.element);
         rq.segment<12>(base) += ws.element.force;
         if (inertia) add_mass_times(c.mass[j], base, state.a, rq);
+        if (c.section.mass_damping > 0.0)
+          add_mass_times(c.section.mass_damping * c.mass[j], base, state.v, rq);
       });
   if (inertia)
     for (const BodyData& b : model.bodies())

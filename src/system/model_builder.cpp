@@ -19,8 +19,10 @@ void validate_section(const std::string& cable, const CableSection& s) {
     fail("bending stiffness EI must be >= 0 N m^2, got " + std::to_string(s.bending_stiffness));
   if (!(s.mass_per_length > 0.0) || !std::isfinite(s.mass_per_length))
     fail("mass per length rhoA must be > 0 kg/m, got " + std::to_string(s.mass_per_length));
-  if (!(s.axial_damping >= 0.0) || !(s.bending_damping >= 0.0))
-    fail("damping coefficients must be >= 0");
+  if (!(s.axial_damping >= 0.0) || !(s.bending_damping >= 0.0) || !(s.mass_damping >= 0.0) ||
+      !std::isfinite(s.axial_damping) || !std::isfinite(s.bending_damping) ||
+      !std::isfinite(s.mass_damping))
+    fail("damping coefficients must be finite and >= 0");
   if (!std::isfinite(s.prestrain) || s.prestrain <= -1.0)
     fail("prestrain must be finite and > -1, got " + std::to_string(s.prestrain));
 }
@@ -35,7 +37,8 @@ void validate_geometry(const std::string& cable, const CableGeometry& g) {
   }
   for (Index k = 0; k < g.node_count(); ++k) {
     if (!g.nodes[k].allFinite())
-      throw ModelError("cable '" + cable + "': node " + std::to_string(k) + " has non-finite coordinates");
+      throw ModelError("cable '" + cable + "': node " + std::to_string(k) +
+                       " has non-finite coordinates");
   }
 }
 
@@ -47,13 +50,21 @@ void validate_geometry(const std::string& cable, const CableGeometry& g) {
 void ModelBuilder::require_new_name(const std::string& name, const char* what) const {
   if (name.empty()) throw ModelError(std::string(what) + ": a name is required");
   for (const auto& c : constraints_)
-    if (c.name == name) throw ModelError(std::string(what) + ": the name '" + name + "' is already used by a constraint");
+    if (c.name == name)
+      throw ModelError(std::string(what) + ": the name '" + name +
+                       "' is already used by a constraint");
   for (const auto& f : forces_)
-    if (f.name == name) throw ModelError(std::string(what) + ": the name '" + name + "' is already used by a force element");
+    if (f.name == name)
+      throw ModelError(std::string(what) + ": the name '" + name +
+                       "' is already used by a force element");
   for (const auto& c : cable_shape_contacts_)
-    if (c.name == name) throw ModelError(std::string(what) + ": the name '" + name + "' is already used by a contact pair");
+    if (c.name == name)
+      throw ModelError(std::string(what) + ": the name '" + name +
+                       "' is already used by a contact pair");
   for (const auto& c : cable_cable_contacts_)
-    if (c.name == name) throw ModelError(std::string(what) + ": the name '" + name + "' is already used by a contact pair");
+    if (c.name == name)
+      throw ModelError(std::string(what) + ": the name '" + name +
+                       "' is already used by a contact pair");
 }
 
 Index ModelBuilder::add_cable(std::string name, const CableGeometry& reference,
@@ -62,8 +73,9 @@ Index ModelBuilder::add_cable(std::string name, const CableGeometry& reference,
     if (c.name == name) throw ModelError("cable name '" + name + "' is used twice");
   validate_section(name, section);
   validate_geometry(name, reference);
-  cables_.push_back({std::move(name), section, reference, reference,
-                     std::vector<NodeCoordinates>(reference.nodes.size(), NodeCoordinates::Zero())});
+  cables_.push_back(
+      {std::move(name), section, reference, reference,
+       std::vector<NodeCoordinates>(reference.nodes.size(), NodeCoordinates::Zero())});
   return static_cast<Index>(cables_.size()) - 1;
 }
 
@@ -104,7 +116,8 @@ Index ModelBuilder::add_body(std::string name, const RigidBodyInertia& inertia,
   inertia.validate(name);
   if (!position.allFinite() || !velocity.allFinite() || !angular_velocity.allFinite())
     throw ModelError("body '" + name + "': non-finite initial pose or twist");
-  if ((rotation.transpose() * rotation - Mat3::Identity()).norm() > 1e-10 || rotation.determinant() < 0.0)
+  if ((rotation.transpose() * rotation - Mat3::Identity()).norm() > 1e-10 ||
+      rotation.determinant() < 0.0)
     throw ModelError("body '" + name + "': initial rotation is not a proper orthonormal matrix");
   bodies_.push_back({std::move(name), inertia, position, rotation, velocity, angular_velocity});
   return static_cast<Index>(bodies_.size()) - 1;
@@ -112,10 +125,12 @@ Index ModelBuilder::add_body(std::string name, const RigidBodyInertia& inertia,
 
 int ModelBuilder::add_driven_frame(DrivenFrame frame) {
   if (!(frame.axis.norm() > 0.0) || !frame.axis.allFinite())
-    throw ModelError("driven frame '" + frame.name + "': the axis must be a non-zero finite vector");
+    throw ModelError("driven frame '" + frame.name +
+                     "': the axis must be a non-zero finite vector");
   const Mat3& a0 = frame.initial_rotation;
   if ((a0.transpose() * a0 - Mat3::Identity()).norm() > 1e-10 || a0.determinant() < 0.0)
-    throw ModelError("driven frame '" + frame.name + "': initial rotation is not a proper orthonormal matrix");
+    throw ModelError("driven frame '" + frame.name +
+                     "': initial rotation is not a proper orthonormal matrix");
   frames_.push_back(std::move(frame));
   return static_cast<int>(frames_.size()) - 1;
 }
@@ -176,21 +191,24 @@ AttachmentPoint checked(const AttachmentPoint& p, const std::function<NodeRef(No
                         Index body_count, int frame_count, const std::string& what) {
   if (const auto* n = std::get_if<NodeRef>(&p)) return node(*n);
   if (const auto* b = std::get_if<BodyPoint>(&p)) {
-    if (b->body < 0 || b->body >= body_count) throw ModelError(what + ": no body " + std::to_string(b->body));
+    if (b->body < 0 || b->body >= body_count)
+      throw ModelError(what + ": no body " + std::to_string(b->body));
   }
   if (const auto* f = std::get_if<FramePoint>(&p)) {
-    if (f->frame < 0 || f->frame >= frame_count) throw ModelError(what + ": no driven frame " + std::to_string(f->frame));
+    if (f->frame < 0 || f->frame >= frame_count)
+      throw ModelError(what + ": no driven frame " + std::to_string(f->frame));
   }
   return p;
 }
 }  // namespace
 
-void ModelBuilder::add_point_force(std::string name, const AttachmentPoint& point, const Vec3& force,
-                                   std::function<Vec3(double)> time_function) {
+void ModelBuilder::add_point_force(std::string name, const AttachmentPoint& point,
+                                   const Vec3& force, std::function<Vec3(double)> time_function) {
   require_new_name(name, "add_point_force");
-  const AttachmentPoint p = checked(point, [&](NodeRef n) { return resolve(n, "add_point_force"); },
-                                    static_cast<Index>(bodies_.size()), static_cast<int>(frames_.size()),
-                                    "point force '" + name + "'");
+  const AttachmentPoint p = checked(
+      point, [&](NodeRef n) { return resolve(n, "add_point_force"); },
+      static_cast<Index>(bodies_.size()), static_cast<int>(frames_.size()),
+      "point force '" + name + "'");
   if (!force.allFinite()) throw ModelError("point force '" + name + "': non-finite force");
   forces_.push_back({name, [name, p, force, time_function](const Offsets& o, Model& m) {
                        PointForce e{point_expression(p, o), force, time_function};
@@ -214,20 +232,21 @@ void ModelBuilder::add_spring_damper(std::string name, const AttachmentPoint& a,
   require_new_name(name, "add_spring_damper");
   auto node = [&](NodeRef n) { return resolve(n, "add_spring_damper"); };
   const std::string what = "spring-damper '" + name + "'";
-  const AttachmentPoint pa = checked(a, node, static_cast<Index>(bodies_.size()),
-                                     static_cast<int>(frames_.size()), what);
-  const AttachmentPoint pb = checked(b, node, static_cast<Index>(bodies_.size()),
-                                     static_cast<int>(frames_.size()), what);
+  const AttachmentPoint pa =
+      checked(a, node, static_cast<Index>(bodies_.size()), static_cast<int>(frames_.size()), what);
+  const AttachmentPoint pb =
+      checked(b, node, static_cast<Index>(bodies_.size()), static_cast<int>(frames_.size()), what);
   if (!(stiffness >= 0.0) || !(damping >= 0.0))
     throw ModelError(what + ": stiffness and damping must be >= 0");
   const double initial = (point_position(pb) - point_position(pa)).norm();
-  if (!(initial > 0.0)) throw ModelError(what + ": its end points coincide initially (zero length)");
+  if (!(initial > 0.0))
+    throw ModelError(what + ": its end points coincide initially (zero length)");
   const double l0 = rest_length < 0.0 ? initial : rest_length;
-  forces_.push_back({name, [name, pa, pb, stiffness, damping, l0](const Offsets& o, Model& m) {
-                       SpringDamper e{point_expression(pa, o), point_expression(pb, o), stiffness,
-                                      damping, l0};
-                       m.springs_.push_back({name, e, blocks_of(e), {}});
-                     }});
+  forces_.push_back(
+      {name, [name, pa, pb, stiffness, damping, l0](const Offsets& o, Model& m) {
+         SpringDamper e{point_expression(pa, o), point_expression(pb, o), stiffness, damping, l0};
+         m.springs_.push_back({name, e, blocks_of(e), {}});
+       }});
 }
 
 void ModelBuilder::add_revolute_drive(std::string name, const std::string& joint,
@@ -244,72 +263,84 @@ void ModelBuilder::add_revolute_drive(std::string name, const std::string& joint
   const RevoluteInfo r = *info;
   const Mat3 a_body = bodies_[r.body].rotation;
   const Mat3 a_base = r.base_body >= 0 ? bodies_[r.base_body].rotation : Mat3::Identity();
-  forces_.push_back({name, [=](const Offsets& o, Model& m) {
-                       RevoluteDrive e;
-                       e.d.add_body(o.body(r.body), direction_weights(a_body.transpose() * e1));
-                       if (r.base_body >= 0) {
-                         e.e1.add_body(o.body(r.base_body), direction_weights(a_base.transpose() * e1));
-                         e.e2.add_body(o.body(r.base_body), direction_weights(a_base.transpose() * e2));
-                       } else {
-                         e.e1 = AffineVector::constant(e1);
-                         e.e2 = AffineVector::constant(e2);
-                       }
-                       e.reference = reference;
-                       e.kp = kp;
-                       e.kd = kd;
-                       e.torque_max = torque_max;
-                       m.drives_.push_back({name, e, blocks_of(e), {}});
-                     }});
+  forces_.push_back(
+      {name, [=](const Offsets& o, Model& m) {
+         RevoluteDrive e;
+         e.d.add_body(o.body(r.body), direction_weights(a_body.transpose() * e1));
+         if (r.base_body >= 0) {
+           e.e1.add_body(o.body(r.base_body), direction_weights(a_base.transpose() * e1));
+           e.e2.add_body(o.body(r.base_body), direction_weights(a_base.transpose() * e2));
+         } else {
+           e.e1 = AffineVector::constant(e1);
+           e.e2 = AffineVector::constant(e2);
+         }
+         e.reference = reference;
+         e.kp = kp;
+         e.kd = kd;
+         e.torque_max = torque_max;
+         m.drives_.push_back({name, e, blocks_of(e), {}});
+       }});
 }
 
 // ----------------------------------------------------------------------------------------------
 // Constraints
 
-void ModelBuilder::add_constraint(std::string name, std::function<ConstraintRows(const Offsets&)> rows) {
+void ModelBuilder::add_constraint(std::string name,
+                                  std::function<ConstraintRows(const Offsets&)> rows) {
   require_new_name(name, "constraint");
   constraints_.push_back({std::move(name), std::move(rows)});
 }
 
 void ModelBuilder::pin(std::string name, NodeRef node, const Vec3& target) {
   node = resolve(node, "pin");
-  add_constraint(std::move(name), [=](const Offsets& o) { return node_position_to_ground(o.node(node), target); });
+  add_constraint(std::move(name),
+                 [=](const Offsets& o) { return node_position_to_ground(o.node(node), target); });
 }
 
 void ModelBuilder::align_slope(std::string name, NodeRef node, const Vec3& direction) {
   node = resolve(node, "align_slope");
   if (!(direction.norm() > 0.0)) throw ModelError("align_slope '" + name + "': zero direction");
-  add_constraint(std::move(name), [=](const Offsets& o) { return node_slope_to_ground(o.node(node), direction); });
+  add_constraint(std::move(name),
+                 [=](const Offsets& o) { return node_slope_to_ground(o.node(node), direction); });
 }
 
 void ModelBuilder::attach_node_to_body(std::string name, NodeRef node, Index body) {
   node = resolve(node, "attach_node_to_body");
   const PendingBody& b = body_at(body, "attach_node_to_body");
   const Vec3 p = b.rotation.transpose() * (initial_node(node).head<3>() - b.position);
-  add_constraint(std::move(name), [=](const Offsets& o) { return node_position_to_body(o.node(node), o.body(body), p); });
+  add_constraint(std::move(name), [=](const Offsets& o) {
+    return node_position_to_body(o.node(node), o.body(body), p);
+  });
 }
 
 void ModelBuilder::align_slope_to_body(std::string name, NodeRef node, Index body) {
   node = resolve(node, "align_slope_to_body");
   const PendingBody& b = body_at(body, "align_slope_to_body");
   const Vec3 d = b.rotation.transpose() * initial_node(node).tail<3>();
-  add_constraint(std::move(name), [=](const Offsets& o) { return node_slope_to_body(o.node(node), o.body(body), d); });
+  add_constraint(std::move(name), [=](const Offsets& o) {
+    return node_slope_to_body(o.node(node), o.body(body), d);
+  });
 }
 
 void ModelBuilder::attach_node_to_frame(std::string name, NodeRef node, int frame) {
   node = resolve(node, "attach_node_to_frame");
   if (frame < 0 || frame >= static_cast<int>(frames_.size()))
-    throw ModelError("attach_node_to_frame '" + name + "': no driven frame " + std::to_string(frame));
+    throw ModelError("attach_node_to_frame '" + name + "': no driven frame " +
+                     std::to_string(frame));
   const FrameKinematics k = frames_[frame].at(0.0);
   const Vec3 p = k.a.transpose() * (initial_node(node).head<3>() - k.r);
-  add_constraint(std::move(name), [=](const Offsets& o) { return node_position_to_frame(o.node(node), frame, p); });
+  add_constraint(std::move(name),
+                 [=](const Offsets& o) { return node_position_to_frame(o.node(node), frame, p); });
 }
 
 void ModelBuilder::align_slope_to_frame(std::string name, NodeRef node, int frame) {
   node = resolve(node, "align_slope_to_frame");
   if (frame < 0 || frame >= static_cast<int>(frames_.size()))
-    throw ModelError("align_slope_to_frame '" + name + "': no driven frame " + std::to_string(frame));
+    throw ModelError("align_slope_to_frame '" + name + "': no driven frame " +
+                     std::to_string(frame));
   const Vec3 d = frames_[frame].at(0.0).a.transpose() * initial_node(node).tail<3>();
-  add_constraint(std::move(name), [=](const Offsets& o) { return node_slope_to_frame(o.node(node), frame, d); });
+  add_constraint(std::move(name),
+                 [=](const Offsets& o) { return node_slope_to_frame(o.node(node), frame, d); });
 }
 
 void ModelBuilder::join_nodes(std::string name, NodeRef a, NodeRef b, bool slopes) {
@@ -328,23 +359,30 @@ void ModelBuilder::join_nodes(std::string name, NodeRef a, NodeRef b, bool slope
 void ModelBuilder::spherical_to_ground(std::string name, Index body, const Vec3& point) {
   const PendingBody& b = body_at(body, "spherical_to_ground");
   const Vec3 p = b.rotation.transpose() * (point - b.position);
-  add_constraint(std::move(name), [=](const Offsets& o) { return body_spherical_to_ground(o.body(body), p, point); });
+  add_constraint(std::move(name), [=](const Offsets& o) {
+    return body_spherical_to_ground(o.body(body), p, point);
+  });
 }
 
-void ModelBuilder::revolute_to_ground(std::string name, Index body, const Vec3& point, const Vec3& axis) {
+void ModelBuilder::revolute_to_ground(std::string name, Index body, const Vec3& point,
+                                      const Vec3& axis) {
   const PendingBody& b = body_at(body, "revolute_to_ground");
   if (!(axis.norm() > 0.0)) throw ModelError("revolute_to_ground '" + name + "': zero axis");
   const Vec3 p = b.rotation.transpose() * (point - b.position);
   const Vec3 n = axis.normalized(), u = b.rotation.transpose() * n;
   revolutes_.push_back({name, -1, body, n});
-  add_constraint(std::move(name), [=](const Offsets& o) { return body_revolute_to_ground(o.body(body), p, u, point, n); });
+  add_constraint(std::move(name), [=](const Offsets& o) {
+    return body_revolute_to_ground(o.body(body), p, u, point, n);
+  });
 }
 
 void ModelBuilder::fixed_to_ground(std::string name, Index body) {
   const PendingBody& b = body_at(body, "fixed_to_ground");
   const Vec3 r = b.position;
   const Mat3 a = b.rotation;
-  add_constraint(std::move(name), [=](const Offsets& o) { return body_fixed_to_ground(o.body(body), Vec3::Zero(), r, a); });
+  add_constraint(std::move(name), [=](const Offsets& o) {
+    return body_fixed_to_ground(o.body(body), Vec3::Zero(), r, a);
+  });
 }
 
 void ModelBuilder::spherical(std::string name, Index body1, Index body2, const Vec3& point) {
@@ -352,10 +390,13 @@ void ModelBuilder::spherical(std::string name, Index body1, Index body2, const V
   const PendingBody& b2 = body_at(body2, "spherical");
   const Vec3 p1 = b1.rotation.transpose() * (point - b1.position);
   const Vec3 p2 = b2.rotation.transpose() * (point - b2.position);
-  add_constraint(std::move(name), [=](const Offsets& o) { return body_spherical(o.body(body1), p1, o.body(body2), p2); });
+  add_constraint(std::move(name), [=](const Offsets& o) {
+    return body_spherical(o.body(body1), p1, o.body(body2), p2);
+  });
 }
 
-void ModelBuilder::revolute(std::string name, Index body1, Index body2, const Vec3& point, const Vec3& axis) {
+void ModelBuilder::revolute(std::string name, Index body1, Index body2, const Vec3& point,
+                            const Vec3& axis) {
   const PendingBody& b1 = body_at(body1, "revolute");
   const PendingBody& b2 = body_at(body2, "revolute");
   if (!(axis.norm() > 0.0)) throw ModelError("revolute '" + name + "': zero axis");
@@ -394,7 +435,8 @@ Model ModelBuilder::finalize() {
     c.node_count = pc.reference.node_count();
     for (Index j = 0; j < pc.reference.element_count(); ++j) {
       const double l = pc.reference.element_lengths[j];
-      c.elements.push_back(CableElementReference::from_reference(pc.reference.element_coordinates(j), l, pc.section.strain));
+      c.elements.push_back(CableElementReference::from_reference(
+          pc.reference.element_coordinates(j), l, pc.section.strain));
       c.mass.push_back(hermite::mass_matrix(pc.section.mass_per_length, l));
     }
     o.cable_first.push_back(next);
@@ -424,7 +466,8 @@ Model ModelBuilder::finalize() {
       for (Index j = 0; j < static_cast<Index>(c.elements.size()); ++j) {
         const Vec4 wts = hermite::load_weights(c.elements[j].length);
         for (int s = 0; s < 4; ++s)
-          m.constant_load_.segment<3>(c.first_coordinate + 6 * j + 3 * s) += c.section.mass_per_length * wts[s] * gravity_;
+          m.constant_load_.segment<3>(c.first_coordinate + 6 * j + 3 * s) +=
+              c.section.mass_per_length * wts[s] * gravity_;
       }
     }
   }
@@ -435,7 +478,8 @@ Model ModelBuilder::finalize() {
     m.v0_.segment<12>(b) = body_velocities(pb.rotation, pb.velocity, pb.angular_velocity);
     // Gravity m g at the centre of mass r_O + Σ c̄_k a_k: blocks m c(c̄)_k g.
     const Vec4 c = point_weights(pb.inertia.centre_of_mass);
-    for (int k = 0; k < 4; ++k) m.constant_load_.segment<3>(b + 3 * k) += pb.inertia.mass * c[k] * gravity_;
+    for (int k = 0; k < 4; ++k)
+      m.constant_load_.segment<3>(b + 3 * k) += pb.inertia.mass * c[k] * gravity_;
   }
   for (const auto& [node, force] : node_forces_) m.constant_load_.segment<3>(o.node(node)) += force;
 
@@ -445,7 +489,8 @@ Model ModelBuilder::finalize() {
     m.constraints_.push_back({name, next + static_cast<Index>(m.rows_.size()), rows.count});
     for (int k = 0; k < rows.count; ++k) m.rows_.push_back(rows.rows[k]);
   };
-  for (const BodyData& b : m.bodies_) push_rows(b.name + ".orthonormality", body_orthonormality(b.first_coordinate));
+  for (const BodyData& b : m.bodies_)
+    push_rows(b.name + ".orthonormality", body_orthonormality(b.first_coordinate));
   for (const PendingConstraint& pc : constraints_) push_rows(pc.name, pc.rows(o));
   for (const PendingForce& f : forces_) f.add(o, m);
   finalize_contacts(o, m);

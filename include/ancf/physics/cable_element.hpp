@@ -36,7 +36,12 @@ struct CableSection {
   double prestrain = 0.0;          ///< ε_p [-]: the reference carries axial force EA·ε_p
   double axial_damping = 0.0;      ///< c_a [N s]: Kelvin–Voigt axial force c_a ε̇
   double bending_damping = 0.0;    ///< c_b [N m² s]: Kelvin–Voigt bending moment c_b κ̇
-  double radius = 0.0;             ///< r [m] of the cross-section; used only by contact (> 0 there)
+  /// α [1/s]: mass-proportional (Rayleigh) damping, the distributed force −α ρA ṙ per unit length
+  /// (consistent: −α M v on the cable's coordinates). Unlike Kelvin–Voigt it acts on every motion,
+  /// rigid and zero-stiffness ones included (a drag against the inertial frame), so it does not
+  /// conserve momentum. Applied by the system assembly, not by the element kernel.
+  double mass_damping = 0.0;
+  double radius = 0.0;  ///< r [m] of the cross-section; used only by contact (> 0 there)
 
   [[nodiscard]] bool has_bending() const {
     return bending_stiffness > 0.0 || bending_damping > 0.0;
