@@ -4,10 +4,10 @@
 // Usage: ancf-capture [--scene studies/scenes/capture.toml] [--integrator genalpha|ida]
 //                     [--elements N] [--t-end T] [--omega-max DEG_PER_S] [--tilt DEG]
 //                     [--friction MU] [--regularization-speed V] [--step H] [--rtol R] [--rho-inf R] [--axial-damping C]
-//                     [--bending EI] [--bending-damping CB] [--no-rope-rope] [--index2] [--free-pole] [--out DIR]
+//                     [--bending EI] [--bending-damping CB] [--mass-damping ALPHA] [--no-rope-rope] [--index2] [--free-pole] [--out DIR]
 // Overrides change the scene's TOML before it is built (element counts, and the rope–rope
 // candidate ranges with them; drive ω_max; pole tilt; friction of every pair; rope damping and
-// bending; rope–rope pairs off; integrator), so
+// bending, mass-proportional damping α [1/s]; rope–rope pairs off; integrator), so
 // the mesh check and the calibration run exactly the scene file otherwise.
 // Writes into DIR (default out/capture-<integrator>): samples.csv (one row per output time),
 // snapshots.csv (node positions of the ropes and the pole axis at t = 0, the event times and the
@@ -41,7 +41,7 @@ struct Options {
   long elements = 0;  // 0: as in the scene
   double t_end = 0.0, omega_max_deg = 0.0, tilt_deg = -1.0, friction = -1.0, step = 0.0, rtol = 0.0;
   double regularization_speed = 0.0, rho_infinity = -1.0, axial_damping = -1.0, bending_stiffness = -1.0;
-  double bending_damping = -1.0;
+  double bending_damping = -1.0, mass_damping = -1.0;
   bool free_pole = false, rope_rope = true, index2 = false;
 };
 
@@ -67,6 +67,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--axial-damping") o.axial_damping = std::stod(value());
     else if (a == "--bending") o.bending_stiffness = std::stod(value());
     else if (a == "--bending-damping") o.bending_damping = std::stod(value());
+    else if (a == "--mass-damping") o.mass_damping = std::stod(value());
     else if (a == "--free-pole") o.free_pole = true;
     else if (a == "--index2") o.index2 = true;
     else if (a == "--no-rope-rope") o.rope_rope = false;
@@ -100,7 +101,7 @@ std::string apply_overrides(const Options& o) {
       t.insert_or_assign("other_elements", range);
     }
   }
-  if (o.axial_damping >= 0.0 || o.bending_stiffness >= 0.0 || o.bending_damping >= 0.0)
+  if (o.axial_damping >= 0.0 || o.bending_stiffness >= 0.0 || o.bending_damping >= 0.0 || o.mass_damping >= 0.0)
     for (toml::node& c : *root["cable"].as_array()) {
       toml::table& section = *c.as_table()->at("section").as_table();
       if (o.axial_damping >= 0.0) section.insert_or_assign("axial_damping", o.axial_damping);
@@ -109,6 +110,7 @@ std::string apply_overrides(const Options& o) {
         section.insert_or_assign("EI", o.bending_stiffness);
       }
       if (o.bending_damping >= 0.0) section.insert_or_assign("bending_damping", o.bending_damping);
+      if (o.mass_damping >= 0.0) section.insert_or_assign("mass_damping", o.mass_damping);
     }
   if (!o.rope_rope) {
     toml::array& contacts = *root["contact"].as_array();
@@ -269,7 +271,8 @@ int main(int argc, char** argv) {
       .set("output_interval", scene.output.interval)
       .set("rope_EI", scene.model.cables()[0].section.bending_stiffness)
       .set("rope_axial_damping", scene.model.cables()[0].section.axial_damping)
-      .set("rope_bending_damping", scene.model.cables()[0].section.bending_damping);
+      .set("rope_bending_damping", scene.model.cables()[0].section.bending_damping)
+      .set("rope_mass_damping", scene.model.cables()[0].section.mass_damping);
   for (const auto& [name, value] : counters) counts.set(name, value);
   meta.set("scene", o.scene)
       .set("status", status)

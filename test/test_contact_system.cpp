@@ -37,8 +37,9 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 // Every pair kind in contact at once, with damping and friction: cable "a" lies on a ground
 // plane (penetration 2–8 mm, onset 4 mm: samples on both sides of the onset), under a drum (capped
 // cylinder on a free rigid body, generic orientation) and a sphere on a rotating driven frame;
-// cable "b" (elastic line) crosses "a" and presses into it.
-Model contact_assembly_scene(Vec3 shift = Vec3::Zero()) {
+// cable "b" (elastic line) crosses "a" and presses into it. shape_samples > 0 replaces the
+// samples per element of the three cable–shape pairs.
+Model contact_assembly_scene(Vec3 shift = Vec3::Zero(), int shape_samples = 0) {
   ModelBuilder b;
   CableSection sa;
   sa.axial_stiffness = 2e4;
@@ -85,9 +86,10 @@ Model contact_assembly_scene(Vec3 shift = Vec3::Zero()) {
       b.add_ground_shape("floor", PlaneShape{Vec3(0.0, 0.0, -shift.norm()), Vec3::UnitZ()});
   const Index drum_shape = b.add_body_shape("drum", body, cyl);
   const Index ball = b.add_frame_shape("ball", frame, SphereShape{Vec3(0.05, 0.0, 0.035), 0.03});
-  b.add_cable_shape_contact("a-floor", ca, plane, law, 3);
-  b.add_cable_shape_contact("a-drum", ca, drum_shape, law, 8);
-  b.add_cable_shape_contact("a-ball", ca, ball, law, 8);
+  const auto samples = [&](int n) { return shape_samples > 0 ? shape_samples : n; };
+  b.add_cable_shape_contact("a-floor", ca, plane, law, samples(3));
+  b.add_cable_shape_contact("a-drum", ca, drum_shape, law, samples(8));
+  b.add_cable_shape_contact("a-ball", ca, ball, law, samples(8));
   b.add_cable_cable_contact("b-a", cb, ca, law, 4);
   return b.finalize();
 }
@@ -231,6 +233,39 @@ TEST(ContactAssembly, PatternIsReservedAndFarPairsContributeNothing) {
 
 // Outputs: the resultant equals the sum of the contact rows of the residual (translation parts)
 // and the first-contact monitor records times only once contact happens.
+// The centreline gap of a cable–shape pair is the minimum over every point of the centreline: the
+// same scene sampled 4001 times per element (a brute-force search) can only find a larger
+// minimum, and the few samples of the scene see no smaller gap either. Drum (on a body) and ball
+// (on a driven frame) touch inside an element: the brute force is off by at most
+// (Δs/2)²/(2ρ) ≤ 1e-8 m (Δs = l/4001 = 5e-5 m; the gap along the cable curves with radius
+// ρ ≥ 0.03 m, the ball's radius). On the floor the deepest point is the cable's end (ξ = 0),
+// which samples at ξ = (k + ½)/4001 miss by Δs/2: off by at most |dg/ds|·Δs/2 ≤ 1.01·Δs/2
+// (|r'| ≤ 1.01 in these states).
+TEST(ContactOutput, CentrelineGapIsTheMinimumOverTheWholeCentreline) {
+  const Model model = contact_assembly_scene();
+  const Model dense_model = contact_assembly_scene(Vec3::Zero(), 4001);
+  for (const unsigned seed : {3u, 11u}) {
+    const SystemState s = perturbed_state(model, seed);
+    Workspace ws(model), dense_ws(dense_model);
+    std::vector<ContactPairState> states(model.contact_pair_count()),
+        dense_states(dense_model.contact_pair_count());
+    contact_states(model, s, ws, states);
+    contact_states(dense_model, s, dense_ws, dense_states);
+    for (Index p = 0; p < static_cast<Index>(model.cable_shape_contacts().size()); ++p) {
+      const double g = states[p].min_centreline_gap, brute = dense_states[p].min_gap;
+      std::printf(
+          "  %s: centreline gap %.12e m, 4001-sample search %.12e m, scene samples %.6e m\n",
+          model.contact_pair_name(p).c_str(), g, brute, states[p].min_gap);
+      EXPECT_GE(brute - g, -1e-15) << model.contact_pair_name(p);
+      const double ds = 0.2 / 4001;
+      const double off = model.contact_pair_name(p) == "a-floor" ? 1.01 * ds / 2 : 1e-8;
+      EXPECT_LE(brute - g, off) << model.contact_pair_name(p);
+      EXPECT_LE(g, states[p].min_gap) << model.contact_pair_name(p);
+    }
+    EXPECT_TRUE(std::isnan(states[model.cable_shape_contacts().size()].min_centreline_gap));
+  }
+}
+
 TEST(ContactOutput, ResultantsMatchTheResidual) {
   const Model model = drop_on_plane_model({.drop_height = -1e-4});  // starts pressed in
   Workspace ws(model);

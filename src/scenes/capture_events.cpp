@@ -90,9 +90,11 @@ const CaptureSample& CaptureObserver::record(const SystemState& state) {
   contact_states(model_, state, ws_, pairs_);
   for (int i = 0; i < 3; ++i) {
     const ContactPairState &shaft = pairs_[pole_pairs_[i][0]], &knob = pairs_[pole_pairs_[i][1]];
-    s.rope_on_pole[i] = shaft.active || knob.active;
+    // CAPTURE.md: "any point with gap < 0": the whole centreline, not only the contact samples
+    // (between samples a rope can lie on the pole before any sample penetrates).
+    s.rope_pole_gap[i] = std::min(shaft.min_centreline_gap, knob.min_centreline_gap);
+    s.rope_on_pole[i] = s.rope_pole_gap[i] < 0.0;
     s.rope_pole_force[i] = (shaft.normal_force + knob.normal_force).norm();
-    s.rope_pole_gap[i] = std::min(shaft.min_gap, knob.min_gap);
     s.ring_end_tension[i] = state.lambda.segment<3>(ring_end_rows_[i]).norm();
   }
   for (const Index p_rr : rope_pairs_) s.rope_rope_force += pairs_[p_rr].normal_force.norm();

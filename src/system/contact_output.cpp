@@ -41,6 +41,9 @@ void contact_states(const Model& model, const SystemState& state, Workspace& ws,
   detail::visit_contact_samples(model, state, ws, {.jacobians = false, .all_samples = true}, sink);
   for (std::size_t k = 0; k < out.size(); ++k)
     out[k].centre = sink.weight(k) > 0.0 ? Vec3(out[k].centre / sink.weight(k)) : Vec3::Zero();
+  for (Index p = 0; p < static_cast<Index>(model.cable_shape_contacts().size()); ++p)
+    out[static_cast<std::size_t>(p)].min_centreline_gap =
+        detail::centreline_min_gap(model, state, ws, p);
 }
 
 ContactMonitor::ContactMonitor(const Model& model)

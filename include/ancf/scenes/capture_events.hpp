@@ -37,9 +37,11 @@ struct CaptureSample {
   double tilt_rate = 0.0;       ///< |a₃ × ȧ₃|/|a₃|² : rate of turn of the pole axis [rad/s]
   double lateral_offset = 0.0;  ///< distance of the pole axis from the ring axis at z = h/2 [m]
   double lateral_speed = 0.0;   ///< speed of that axis point across the ring axis [m/s]
-  std::array<bool, 3> rope_on_pole{};         ///< rope touches shaft or knob
+  std::array<bool, 3> rope_on_pole{};         ///< some point of the rope has gap < 0 to shaft or knob
   std::array<double, 3> rope_pole_force{};    ///< |normal force resultant| rope–pole [N]
-  std::array<double, 3> rope_pole_gap{};      ///< smallest sample gap rope–shaft/knob [m] (< 0: contact)
+  /// Smallest gap of the rope's centreline (every point, not only the contact samples) to shaft
+  /// or knob [m] (< 0: contact).
+  std::array<double, 3> rope_pole_gap{};
   std::array<double, 3> ring_end_tension{};   ///< |rope end force| at the rotating ring [N]
   double rope_rope_force = 0.0;               ///< sum of |normal resultants| of rope–rope pairs [N]
 };

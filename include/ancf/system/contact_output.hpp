@@ -15,6 +15,10 @@ struct ContactPairState {
   bool active = false;  ///< at least one sample penetrates (g < 0)
   int active_samples = 0;
   double min_gap = std::numeric_limits<double>::infinity();  ///< min over all samples [m]
+  /// Cable–shape pairs: min of the gap over every point of the candidate elements' centrelines,
+  /// samples or not [m] (< 0: the cable touches the shape somewhere, even where no sample
+  /// penetrates yet, so no force acts there). NaN for cable–cable pairs.
+  double min_centreline_gap = std::numeric_limits<double>::quiet_NaN();
   Vec3 normal_force = Vec3::Zero();    ///< Σ w f_n n on the pair's (first) cable [N]
   Vec3 friction_force = Vec3::Zero();  ///< Σ w f_t on the pair's (first) cable [N]
   double peak_sample_force = 0.0;      ///< max over samples of |w f_n| [N]
