@@ -19,7 +19,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 UNITS = {
     "x": "m", "y": "m", "z": "m", "rx": "rad", "ry": "rad", "rz": "rad",
     "kinetic": "J", "strain": "J", "spring": "J", "load": "J", "total": "J",
-    "position": "-", "velocity": "-", "active": "-", "samples": "-", "min_gap": "m",
+    "position": "-", "velocity": "-", "active": "-", "samples": "-", "min_gap": "m", "centreline_gap": "m",
     "normal": "N", "friction": "N", "peak": "N", "angle": "rad", "rate": "rad/s", "torque": "N m",
 }
 

@@ -48,11 +48,12 @@ void check_run(const std::string& integrator) {
   ASSERT_EQ(csv.size(), 12u);
   EXPECT_EQ(csv[0],
             "t,middle.x,middle.y,middle.z,rope_floor.active,rope_floor.samples,rope_floor.min_gap,"
-            "rope_floor.normal,rope_floor.friction,rope_floor.peak,energy.kinetic,energy.strain,"
+            "rope_floor.centreline_gap,rope_floor.normal,rope_floor.friction,rope_floor.peak,"
+            "energy.kinetic,energy.strain,"
             "energy.spring,energy.load,energy.total");
   EXPECT_EQ(csv[1].substr(0, 2), "0,");
   EXPECT_EQ(csv.back().substr(0, 5), "0.05,");
-  for (const auto& row : csv) EXPECT_EQ(std::count(row.begin(), row.end(), ','), 14) << row;
+  for (const auto& row : csv) EXPECT_EQ(std::count(row.begin(), row.end(), ','), 15) << row;
   const std::string json = text(out / "run.json");
   EXPECT_NE(json.find("\"status\": \"completed\""), std::string::npos) << json;
   EXPECT_NE(json.find("\"integrator\": \"" + integrator + "\""), std::string::npos) << json;

@@ -21,7 +21,7 @@ std::vector<std::string> suffixes(Probe::Kind kind) {
     case Probe::Kind::constraint_violation:
       return {"position", "velocity"};
     case Probe::Kind::contact:
-      return {"active", "samples", "min_gap", "normal", "friction", "peak"};
+      return {"active", "samples", "min_gap", "centreline_gap", "normal", "friction", "peak"};
     case Probe::Kind::drive:
       return {"angle", "rate", "torque"};
   }
@@ -80,7 +80,8 @@ const std::vector<double>& ProbeRecorder::evaluate(const SystemState& state, Wor
         contacts_done = true;
         const ContactPairState& c = monitor_.states()[p.target];
         for (double x : {c.active ? 1.0 : 0.0, static_cast<double>(c.active_samples), c.min_gap,
-                         c.normal_force.norm(), c.friction_force.norm(), c.peak_sample_force})
+                         c.min_centreline_gap, c.normal_force.norm(), c.friction_force.norm(),
+                         c.peak_sample_force})
           row_[k++] = x;
         break;
       }
