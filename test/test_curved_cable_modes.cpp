@@ -23,6 +23,7 @@
 #include "ancf/system/cable_geometry.hpp"
 #include "ancf/system/modal_analysis.hpp"
 #include "ancf/system/model_builder.hpp"
+#include "dense_matrix.hpp"
 
 namespace ancf {
 namespace {
@@ -60,16 +61,11 @@ struct ModeCount {
 };
 
 MatX damping_matrix(const Model& model) {
-  const SparsityPattern& p = model.pattern();
-  VecX values(p.nonzeros());
+  VecX values(model.pattern().nonzeros());
   assemble_iteration_matrix(model, SystemState::initial(model), {.w_q = 0.0, .w_v = 1.0},
                             as_span(values));
   const Index n = model.coordinate_count();  // the coordinate block; constraint rows follow
-  MatX c = MatX::Zero(n, n);
-  for (Index col = 0; col < n; ++col)
-    for (Index k = p.column_start()[col]; k < p.column_start()[col + 1]; ++k)
-      if (p.row_index()[k] < n) c(p.row_index()[k], col) = values[k];
-  return c;
+  return testing::dense(model.pattern(), values).topLeftCorner(n, n);
 }
 
 // An eigenvalue is zero when |ω²| is at the round-off level of the eigen-solve,
