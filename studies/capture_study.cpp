@@ -5,9 +5,12 @@
 //                     [--elements N] [--t-end T] [--omega-max DEG_PER_S] [--tilt DEG]
 //                     [--friction MU] [--regularization-speed V] [--step H] [--rtol R] [--rho-inf R] [--axial-damping C]
 //                     [--bending EI] [--bending-damping CB] [--mass-damping ALPHA] [--no-rope-rope] [--index2] [--free-pole] [--out DIR]
+//                     [--error-control] [--error-rtol R] [--error-atol A] [--h-min H] [--h-max H]
+//                     [--step-change automatic|restart|rescale] [--refresh-on-contact]
 // Overrides change the scene's TOML before it is built (element counts, and the rope–rope
 // candidate ranges with them; drive ω_max; pole tilt; friction of every pair; rope damping and
-// bending, mass-proportional damping α [1/s]; rope–rope pairs off; integrator), so
+// bending, mass-proportional damping α [1/s]; rope–rope pairs off; integrator; generalized-α
+// error-controlled stepping and its tolerances, step-change mode, fresh matrix on contact change), so
 // the mesh check and the calibration run exactly the scene file otherwise.
 // Writes into DIR (default out/capture-<integrator>): samples.csv (one row per output time),
 // snapshots.csv (node positions of the ropes and the pole axis at t = 0, the event times and the
@@ -43,6 +46,9 @@ struct Options {
   double regularization_speed = 0.0, rho_infinity = -1.0, axial_damping = -1.0, bending_stiffness = -1.0;
   double bending_damping = -1.0, mass_damping = -1.0;
   bool free_pole = false, rope_rope = true, index2 = false;
+  bool error_control = false, refresh_on_contact = false;
+  double error_rtol = 0.0, error_atol = 0.0, h_min = 0.0, h_max = -1.0;
+  std::string step_change;
 };
 
 Options parse(int argc, char** argv) {
@@ -71,6 +77,13 @@ Options parse(int argc, char** argv) {
     else if (a == "--free-pole") o.free_pole = true;
     else if (a == "--index2") o.index2 = true;
     else if (a == "--no-rope-rope") o.rope_rope = false;
+    else if (a == "--error-control") o.error_control = true;
+    else if (a == "--error-rtol") o.error_rtol = std::stod(value());
+    else if (a == "--error-atol") o.error_atol = std::stod(value());
+    else if (a == "--h-min") o.h_min = std::stod(value());
+    else if (a == "--h-max") o.h_max = std::stod(value());
+    else if (a == "--step-change") o.step_change = value();
+    else if (a == "--refresh-on-contact") o.refresh_on_contact = true;
     else if (a == "--out") o.out = value();
     else throw std::invalid_argument("unknown option " + a);
   }
@@ -139,14 +152,17 @@ std::string apply_overrides(const Options& o) {
   integrator.insert_or_assign("method", o.integrator);
   if (o.t_end > 0.0) integrator.insert_or_assign("t_end", o.t_end);
   if (o.rtol > 0.0) integrator.insert_or_assign("rtol", o.rtol);
-  if (o.index2) {
-    if (!integrator.contains("genalpha")) integrator.insert_or_assign("genalpha", toml::table{});
-    integrator.at("genalpha").as_table()->insert_or_assign("formulation", "stabilized_index2");
-  }
-  if (o.rho_infinity >= 0.0) {
-    if (!integrator.contains("genalpha")) integrator.insert_or_assign("genalpha", toml::table{});
-    integrator.at("genalpha").as_table()->insert_or_assign("rho_infinity", o.rho_infinity);
-  }
+  if (!integrator.contains("genalpha")) integrator.insert_or_assign("genalpha", toml::table{});
+  toml::table& genalpha = *integrator.at("genalpha").as_table();
+  if (o.index2) genalpha.insert_or_assign("formulation", "stabilized_index2");
+  if (o.rho_infinity >= 0.0) genalpha.insert_or_assign("rho_infinity", o.rho_infinity);
+  if (o.error_control) genalpha.insert_or_assign("stepping", "error_controlled");
+  if (o.error_rtol > 0.0) genalpha.insert_or_assign("error_rtol", o.error_rtol);
+  if (o.error_atol > 0.0) genalpha.insert_or_assign("error_atol", o.error_atol);
+  if (o.h_min > 0.0) genalpha.insert_or_assign("h_min", o.h_min);
+  if (o.h_max >= 0.0) genalpha.insert_or_assign("h_max", o.h_max);
+  if (!o.step_change.empty()) genalpha.insert_or_assign("step_change", o.step_change);
+  if (o.refresh_on_contact) genalpha.insert_or_assign("refresh_on_contact_change", true);
   if (o.step > 0.0) {
     const char* group = o.integrator == "ida" ? "ida" : "genalpha";
     if (!integrator.contains(group)) integrator.insert_or_assign(group, toml::table{});

@@ -32,6 +32,21 @@ IntegratorSettings read_integrator(TableReader& root) {
     s.ga_atol_position = ga->number_or("atol_position", s.ga_atol_position, Range::positive);
     s.ga_atol_velocity = ga->number_or("atol_velocity", s.ga_atol_velocity, Range::positive);
     s.ga_atol_multiplier = ga->number_or("atol_multiplier", s.ga_atol_multiplier, Range::positive);
+    s.ga_error_controlled =
+        ga->choice("stepping", {"fixed", "error_controlled"}, "fixed") == "error_controlled";
+    StepControllerOptions& c = s.ga_controller;
+    c.rtol = ga->number_or("error_rtol", c.rtol, Range::positive);
+    c.atol = ga->number_or("error_atol", c.atol, Range::positive);
+    c.h_min = ga->number_or("h_min", c.h_min, Range::positive);
+    c.h_max = ga->number_or("h_max", c.h_max, Range::non_negative);
+    if (c.h_max > 0.0 && c.h_max < c.h_min) ga->fail("h_max", "expected h_max >= h_min (0: none)");
+    const std::string change =
+        ga->choice("step_change", {"automatic", "restart", "rescale"}, "automatic");
+    s.ga_step_change = change == "restart"   ? GeneralizedAlphaStepChange::restart
+                       : change == "rescale" ? GeneralizedAlphaStepChange::rescale
+                                             : GeneralizedAlphaStepChange::automatic;
+    s.ga_refresh_on_contact_change =
+        ga->boolean_or("refresh_on_contact_change", s.ga_refresh_on_contact_change);
     if (!s.stabilized_index2 && s.rho_infinity >= 1.0)
       ga->fail("rho_infinity",
                "index 3 with rho_infinity = 1 is unstable: use rho_infinity < 1 or "

@@ -1,6 +1,8 @@
 // The integrator driver shared by `ancf run` and the studies (simulation.hpp).
 #include "ancf/io/simulation.hpp"
 
+#include <cmath>
+
 #include "ancf/solvers/generalized_alpha.hpp"
 #include "ancf/solvers/ida_integrator.hpp"
 #include "ancf/system/ggl_problem.hpp"
@@ -56,13 +58,19 @@ void run_genalpha(const Model& model, const IntegratorSettings& s, const std::ve
   GeneralizedAlphaOptions o;
   o.step_size = s.step;
   o.rho_infinity = s.rho_infinity;
-  o.formulation =
-      s.stabilized_index2 ? GeneralizedAlphaFormulation::stabilized_index2 : GeneralizedAlphaFormulation::index3;
-  o.start = s.perturbed_start ? GeneralizedAlphaStart::perturbed : GeneralizedAlphaStart::consistent;
+  o.formulation = s.stabilized_index2 ? GeneralizedAlphaFormulation::stabilized_index2
+                                      : GeneralizedAlphaFormulation::index3;
+  o.start =
+      s.perturbed_start ? GeneralizedAlphaStart::perturbed : GeneralizedAlphaStart::consistent;
   o.rtol = s.rtol;
   o.atol_position = s.ga_atol_position;
   o.atol_velocity = s.ga_atol_velocity;
   o.atol_multiplier = s.ga_atol_multiplier;
+  o.stepping = s.ga_error_controlled ? GeneralizedAlphaStepping::error_controlled
+                                     : GeneralizedAlphaStepping::fixed;
+  o.controller = s.ga_controller;
+  o.step_change = s.ga_step_change;
+  o.refresh_on_active_set_change = s.ga_refresh_on_contact_change;
   GeneralizedAlphaStepper ga(problem, o);
   SystemState state = SystemState::initial(model);
   auto snapshot = [&] {
@@ -83,6 +91,14 @@ void run_genalpha(const Model& model, const IntegratorSettings& s, const std::ve
          {"convergence failures", st.convergence_failures},
          {"step halvings", st.step_halvings},
          {"restarts", st.restarts}};
+    if (o.stepping == GeneralizedAlphaStepping::error_controlled)
+      c.insert(c.end(), {{"rejected steps", st.rejected_steps},
+                         {"error test failures", st.error_test_failures},
+                         {"step size changes", st.step_size_changes},
+                         {"min step [ns]", std::lround(1e9 * st.min_step)},
+                         {"max step [ns]", std::lround(1e9 * st.max_step)}});
+    if (o.refresh_on_active_set_change)
+      c.push_back({"active-set refreshes", st.active_set_refreshes});
   };
   ga.initialize(0.0);
   snapshot();
@@ -112,8 +128,9 @@ std::vector<double> output_times(double interval, double t_end) {
   return t;
 }
 
-void simulate(const Model& model, const IntegratorSettings& settings, const std::vector<double>& times,
-              const SimulationHooks& hooks, SimulationCounters& counters) {
+void simulate(const Model& model, const IntegratorSettings& settings,
+              const std::vector<double>& times, const SimulationHooks& hooks,
+              SimulationCounters& counters) {
   if (settings.kind == IntegratorKind::ida)
     run_ida(model, settings, times, hooks, counters);
   else

@@ -43,6 +43,12 @@ GeneralizedAlphaParameters GeneralizedAlphaParameters::chung_hulbert(double rho)
   return p;
 }
 
+double GeneralizedAlphaParameters::local_error_constant() const {
+  // docs/time_step_control.md: with exact q_n, v_n and a_n = q''(t_n + Δh) the position update
+  // differs from the Taylor series of q by (Δ/2 + β − 1/6) h³ q''' + O(h⁴).
+  return 0.5 * (alpha_m - alpha_f) + beta - 1.0 / 6.0;
+}
+
 GeneralizedAlphaStepper::GeneralizedAlphaStepper(SecondOrderProblem& problem,
                                                  GeneralizedAlphaOptions options)
     : problem_(problem),
@@ -51,7 +57,8 @@ GeneralizedAlphaStepper::GeneralizedAlphaStepper(SecondOrderProblem& problem,
       n_(problem.coordinate_count()),
       m_(problem.multiplier_count()),
       klu_(problem.iteration_pattern()),
-      projector_(problem.iteration_pattern()) {
+      projector_(problem.iteration_pattern()),
+      controller_(options.controller, 2) {
   if (!(options_.step_size > 0.0))
     throw std::invalid_argument("generalized-α: the step size must be positive");
   if (options_.formulation == GeneralizedAlphaFormulation::index3 && options_.rho_infinity == 1.0)
@@ -62,7 +69,7 @@ GeneralizedAlphaStepper::GeneralizedAlphaStepper(SecondOrderProblem& problem,
       options_.atol_velocity <= 0.0 || options_.atol_multiplier <= 0.0)
     throw std::invalid_argument("generalized-α: tolerances must be positive, max_iterations ≥ 1");
   const Index size = problem.system_size();
-  for (VecX* v : {&q_, &v_, &acc_, &a_, &q1_, &v1_, &acc1_, &acc_previous_, &increment_})
+  for (VecX* v : {&q_, &v_, &acc_, &a_, &q1_, &v1_, &acc1_, &a1_, &acc_previous_, &increment_})
     v->setZero(n_);
   for (VecX* v : {&lambda_, &lambda1_, &lambda_previous_, &velocity_residual_, &phi_})
     v->setZero(m_);
@@ -174,67 +181,16 @@ void GeneralizedAlphaStepper::initialize(double t0, const VecX& q0, const VecX& 
   steps_since_halving_ = 0;
   halvings_in_a_row_ = 0;
   stats_.min_step = h_;
+  stats_.max_step = 0.0;
   initialized_ = true;
+  update_factorization_counters();
+}
+
+void GeneralizedAlphaStepper::update_factorization_counters() {
   stats_.full_factorizations =
       klu_.full_factorizations() - klu_base_[0] + projector_.full_factorizations() - klu_base_[2];
   stats_.factorizations = stats_.full_factorizations + klu_.refactorizations() - klu_base_[1] +
                           projector_.refactorizations() - klu_base_[3];
-}
-
-void GeneralizedAlphaStepper::restart(double t, double h) {
-  // Consistent starting values at (t, q_) for step size h (q_ satisfies Φ = 0).
-  refresh_projector(t, q_);
-  project_velocities(t, q_, v_);
-  solve_index1(t, q_, v_, acc_, lambda_);
-  a_h_ = h;
-  have_previous_ = false;
-  if (options_.start == GeneralizedAlphaStart::perturbed && params_.alpha_m != params_.alpha_f)
-    perturbed_start(t, h);
-  else
-    a_ = acc_;
-  matrix_stale_ = true;
-  ++stats_.restarts;
-}
-
-void GeneralizedAlphaStepper::perturbed_start(double t0, double h) {
-  // Starting values that agree with the asymptotic expansion of the numerical solution, so the
-  // O(h) start-up transient of λ (and q'') does not arise (Arnold, Brüls & Cardona 2015).
-  //
-  // (i) a_n approximates q''(t_n + Δh), Δ = α_m − α_f, to O(h²) (AB 7 is then consistent to
-  // second order). We evaluate q'' at t_0 + Δh by the index-1 solve at the Taylor state
-  // q_0 + s v_0 + ½s² q''_0, v_0 + s q''_0 (s = Δh), whose errors O(s³), O(s²) change q'' by O(h²).
-  // q1_, v1_ and phi_ hold the Taylor state and the (unused) multipliers there: no allocation.
-  const GeneralizedAlphaParameters& p = params_;
-  const double delta = p.alpha_m - p.alpha_f, s = delta * h;
-  q1_ = q_ + s * v_ + 0.5 * s * s * acc_;
-  v1_ = v_ + s * acc_;
-  refresh_projector(t0 + s, q1_);
-  solve_index1(t0 + s, q1_, v1_, a_, phi_);
-  // (ii) Index 3: the constraint-normal part of v_0 as the expansion has it (see
-  // shift_normal_velocity), c h² q'''_0 with q'''_0 = (a_0 − q''_0)/(Δh) + O(h).
-  shift_normal_velocity(t0, (1.0 / 6.0 - 0.5 * delta - p.beta) * h * h / s);
-}
-
-void GeneralizedAlphaStepper::shift_normal_velocity(double t, double factor) {
-  // Index 3: Φ(q_{n+1}) = 0 fixes the constraint-normal part of the position update,
-  // h v_n + h²(½ − β) a_n + h²β a_{n+1} = q(t_{n+1}) − q(t_n) to O(h⁴). With a_n = q''(t_n + Δh)
-  // the Taylor expansion leaves h³q'''(Δ/2 + β − 1/6), so the normal part of v_n follows
-  // v(t_n) + c h² q''' with c = 1/6 − Δ/2 − β. A v_n that differs from this by O(h²) (an exact
-  // v_0, or the v_n of another step size) is turned into an O(h) transient of λ by the h⁻² of
-  // the multipliers; it decays like n ρ∞ⁿ (the (v, a) recursion has the double root −ρ∞).
-  // Here v += x, the M-orthogonal correction x = M⁻¹Φ_qᵀy with Φ_q x = Φ_q δ, δ = factor·(a − q'')
-  // (a − q'' = Δh q''' + O(h²)); the tangential part of δ would only change the error constant.
-  if (options_.formulation != GeneralizedAlphaFormulation::index3 || m_ == 0 || factor == 0.0)
-    return;
-  v1_ = factor * (a_ - acc_);  // δ (v1_, q1_ are free outside a step)
-  q1_.setZero();
-  refresh_projector(t, q_);
-  problem_.velocity_constraint(t, as_span(q_), as_span(v1_), as_span(phi_));  // Φ_q δ + Φ_t
-  problem_.velocity_constraint(t, as_span(q_), as_span(q1_), as_span(velocity_residual_));  // Φ_t
-  rhs_.head(n_).setZero();
-  rhs_.tail(m_) = phi_ - velocity_residual_;
-  projector_.solve(as_span(rhs_));
-  v_ += rhs_.head(n_);
 }
 
 // --- one step ------------------------------------------------------------------------------------
@@ -263,6 +219,7 @@ void GeneralizedAlphaStepper::refresh_matrix(double t1, double h) {
                             iteration_weights(h, options_.scaling), as_span(values_));
   ++stats_.matrix_evaluations;
   klu_.factor(as_span(values_));
+  matrix_signature_ = problem_.active_set_signature();  // of the residual at this iterate
   matrix_h_ = h;
   matrix_age_ = 0;
   matrix_stale_ = false;
@@ -349,6 +306,13 @@ GeneralizedAlphaStepper::Outcome GeneralizedAlphaStepper::newton(double t1, doub
     if (!residual_.allFinite()) return fresh ? Outcome::failed : Outcome::diverged_stale;
     if (index2 && m_ > 0)
       problem_.velocity_constraint(t1, as_span(q1_), as_span(v1_), as_span(velocity_residual_));
+    // A contact that became active (or inactive) since the chord matrix was built changes the
+    // stiffness by the penalty k: rebuild now rather than let the old matrix fail first.
+    if (options_.refresh_on_active_set_change && !full && !matrix_stale_ &&
+        problem_.active_set_signature() != matrix_signature_) {
+      matrix_stale_ = true;
+      ++stats_.active_set_refreshes;
+    }
     if (full || matrix_stale_ || matrix_h_ != h) {
       try {
         refresh_matrix(t1, h);
@@ -421,40 +385,101 @@ GeneralizedAlphaStepper::Outcome GeneralizedAlphaStepper::newton(double t1, doub
   return fresh ? Outcome::failed : Outcome::diverged_stale;
 }
 
-void GeneralizedAlphaStepper::change_step_size(double h_new) {
-  // The state carries h-dependent parts of the expansion of the numerical solution (a − q'' =
-  // Δh q''' + O(h²) and, index 3, the normal part c h² q''' of v). Adapting them to a new h is not
-  // enough: the index-3 (v, a) recursion amplifies O(h²) velocity errors by h⁻² in the
-  // multipliers, and a run of successive halvings (as after Newton failures) makes that grow
-  // without bound. So a change of step size restarts the scheme from (t, q, v) with the starting
-  // procedure of initialize(): v projected onto Φ_q v + Φ_t = 0, q'' and λ from the index-1
-  // system, a (and the normal part of v) from options.start for the new h.
-  if (h_new == a_h_) return;
-  restart(t_, h_new);
+double GeneralizedAlphaStepper::attempt_size(double remaining, bool& last) const {
+  if (adaptive()) {
+    // n = ⌈remaining/h_⌉ equal steps to t_limit: an output interval is crossed at one h (no
+    // sliver, and the same h in every interval while h_ holds). A size within 1e-9 of the one the
+    // state is calibrated to is taken as that one (no rescale; the factorization stays valid).
+    const double n = std::ceil(remaining / h_ * (1.0 - 1e-9));
+    last = n <= 1.0;
+    double h = !(n < 1e9) ? h_ : last ? remaining : remaining / n;
+    if (std::abs(h - a_h_) <= 1e-9 * a_h_) h = a_h_;
+    return h;
+  }
+  // Fixed: snap to t_limit when it is within round-off of one step, so output times are hit
+  // exactly (keeping h_ itself then, so the factorization stays valid). When t_limit is more than
+  // one but less than 1.5 steps away, take two equal steps of remaining/2 instead of h_ and a
+  // sliver: a sliver (t drifts against the output grid after halvings) restarts the scheme at a
+  // tiny h, where the index-3 multipliers carry round-off amplified by h⁻² and Newton fails.
+  const bool snap = std::abs(remaining - h_) <= 1e-8 * h_;
+  const double h = snap                   ? h_
+                   : remaining < h_       ? remaining
+                   : remaining < 1.5 * h_ ? 0.5 * remaining
+                                          : h_;
+  last = snap || h == remaining;
+  return h;
+}
+
+double GeneralizedAlphaStepper::local_error(double h) {
+  // a_{n+1} from (AB 7); the position error of the step is C h³ q''' + O(h⁴) and
+  // a_{n+1} − a_n = h q''' + O(h²) (docs/time_step_control.md). increment_ is scratch here.
+  const GeneralizedAlphaParameters& p = params_;
+  a1_ = (p.alpha_f * acc_ - p.alpha_m * a_ + (1.0 - p.alpha_f) * acc1_) / (1.0 - p.alpha_m);
+  if (!adaptive()) return 0.0;
+  increment_ = (p.local_error_constant() * h * h) * (a1_ - a_);
+  if (options_.filter_error_estimate) {
+    // Filtered estimate ẽ = S⁻¹[w_a M e; 0] with the factorized iteration matrix S (Shampine's
+    // filter, as Radau5 applies (I − hγJ)⁻¹ to its estimate: Hairer & Wanner II, §IV.8). A mode of
+    // frequency ω is scaled by 1/(1 + (βh²(1 − α_f)/(1 − α_m))ω²): resolved modes keep their
+    // error to O(h²ω²), unresolved stiff ones (axial, contact), which the scheme damps instead of
+    // resolving, drop out, and the constraint rows remove the normal part the scheme enforces.
+    // M e from the n×n block of the projector values (= M: the projector is M with Φ_q borders).
+    const MatrixWeights w = iteration_weights(h, options_.scaling);
+    const std::vector<Index>& start = problem_.iteration_pattern().column_start();
+    const std::vector<Index>& row = problem_.iteration_pattern().row_index();
+    rhs_.setZero();
+    for (Index c = 0; c < n_; ++c)
+      for (Index k = start[c]; k < start[c + 1] && row[k] < n_; ++k)
+        rhs_[row[k]] += w.w_a * projector_values_[k] * increment_[c];
+    klu_.solve(as_span(rhs_));
+    increment_ = rhs_.head(n_);
+  }
+  return controller_.error_norm(as_span(increment_), as_span(q_), as_span(q1_));
+}
+
+void GeneralizedAlphaStepper::accept(double t1, double h, bool on_base, bool last) {
+  a_.swap(a1_);
+  q_.swap(q1_);
+  v_.swap(v1_);
+  acc_previous_.swap(acc_);
+  acc_.swap(acc1_);
+  lambda_previous_.swap(lambda_);
+  lambda_.swap(lambda1_);
+  have_previous_ = true;
+  previous_h_ = h;
+  // t = t_base + n h (one rounding) rather than t += h (n roundings): far from t = 0 the
+  // accumulated round-off would otherwise exceed the snap tolerance within an output interval.
+  t_ = t1;
+  if (on_base && !last) {
+    ++steps_from_base_;
+  } else {
+    t_base_ = t1;
+    base_h_ = h;
+    steps_from_base_ = 0;
+  }
+  ++stats_.steps;
+  stats_.min_step = std::min(stats_.min_step, h);
+  stats_.max_step = std::max(stats_.max_step, h);
+  ++matrix_age_;
+  halvings_in_a_row_ = 0;
+  // Modified Newton keeps the factorization while it contracts well ("while the contraction
+  // rate is good"); a slow step means the matrix has drifted from the current state.
+  if (options_.newton == NewtonStrategy::modified &&
+      (step_max_rate_ > options_.max_reuse_rate || matrix_age_ >= options_.max_matrix_age))
+    matrix_stale_ = true;
 }
 
 void GeneralizedAlphaStepper::step(double t_limit) {
   if (!initialized_) throw std::logic_error("GeneralizedAlphaStepper::step before initialize()");
   ScopedTimer timer(stats_.wall_seconds);
-  const GeneralizedAlphaParameters& p = params_;
   const double remaining = t_limit - t_;
   if (!(remaining > 0.0)) return;
+  const double h_min = controller_.options().h_min;
   bool retried_stale = false;
   for (;;) {
-    // Snap to t_limit when it is within round-off of one step, so output times are hit exactly
-    // (keeping h_ itself then, so the factorization stays valid). When t_limit is more than one
-    // but less than 1.5 steps away, take two equal steps of remaining/2 instead of h_ and a
-    // sliver: a sliver (t drifts against the output grid after halvings) restarts the scheme at
-    // a tiny h, where the index-3 multipliers carry round-off amplified by h⁻² and Newton fails.
-    const bool snap = std::abs(remaining - h_) <= 1e-8 * h_;
-    const double h = snap                   ? h_
-                     : remaining < h_       ? remaining
-                     : remaining < 1.5 * h_ ? 0.5 * remaining
-                                            : h_;
-    const bool last = snap || h == remaining;
+    bool last = false;
+    const double h = attempt_size(remaining, last);
     change_step_size(h);
-    // t = t_base + n h (one rounding) rather than t += h (n roundings): far from t = 0 the
-    // accumulated round-off would otherwise exceed the snap tolerance within an output interval.
     const bool on_base = h == base_h_;
     const double t1 = last      ? t_limit
                       : on_base ? t_base_ + static_cast<double>(steps_from_base_ + 1) * h
@@ -462,33 +487,28 @@ void GeneralizedAlphaStepper::step(double t_limit) {
     predict(h);
     const Outcome outcome = newton(t1, h);
     if (outcome == Outcome::converged) {
-      a_ = (p.alpha_f * acc_ - p.alpha_m * a_ + (1.0 - p.alpha_f) * acc1_) / (1.0 - p.alpha_m);
-      q_.swap(q1_);
-      v_.swap(v1_);
-      acc_previous_.swap(acc_);
-      acc_.swap(acc1_);
-      lambda_previous_.swap(lambda_);
-      lambda_.swap(lambda1_);
-      have_previous_ = true;
-      previous_h_ = h;
-      t_ = t1;
-      if (on_base && !last) {
-        ++steps_from_base_;
-      } else {
-        t_base_ = t1;
-        base_h_ = h;
-        steps_from_base_ = 0;
+      const double err = local_error(h);
+      if (adaptive()) {
+        const StepDecision d = controller_.decide(h, err);
+        if (!d.accept) {
+          ++stats_.error_test_failures;
+          ++stats_.rejected_steps;
+          if (h <= h_min * (1.0 + 1e-12))
+            throw SolverError(fmt::format(
+                "generalized-α: local error estimate {:.3e} > 1 at t = {:.9g} with h = h_min = "
+                "{:.3e}; loosen the error tolerances or lower h_min",
+                err, t_, h));
+          h_ = d.h_next;
+          retried_stale = false;
+          continue;
+        }
+        // A step shortened to reach t_limit does not shrink the controller's h_ unless its own
+        // error asks for a smaller step.
+        h_ = h < h_ && d.h_next >= h ? std::max(h_, d.h_next) : d.h_next;
       }
-      ++stats_.steps;
-      stats_.min_step = std::min(stats_.min_step, h);
-      ++matrix_age_;
-      halvings_in_a_row_ = 0;
-      // Modified Newton keeps the factorization while it contracts well ("while the contraction
-      // rate is good"); a slow step means the matrix has drifted from the current state.
-      if (options_.newton == NewtonStrategy::modified &&
-          (step_max_rate_ > options_.max_reuse_rate || matrix_age_ >= options_.max_matrix_age))
-        matrix_stale_ = true;
-      if (h_ < options_.step_size && ++steps_since_halving_ >= options_.recovery_steps) {
+      accept(t1, h, on_base, last);
+      if (!adaptive() && h_ < options_.step_size &&
+          ++steps_since_halving_ >= options_.recovery_steps) {
         // Back up the ladder step_size·2⁻ᵏ (the largest rung ≤ 2h_): a halving of a shortened
         // step leaves h_ off the ladder, and doubling it would keep it off (and t off the grid).
         double rung = options_.step_size;
@@ -501,28 +521,35 @@ void GeneralizedAlphaStepper::step(double t_limit) {
     ++stats_.convergence_failures;
     matrix_stale_ = true;
     if (outcome == Outcome::diverged_stale && !retried_stale) {
-      retried_stale = true;  // same h with a fresh matrix before halving
+      retried_stale = true;  // same h with a fresh matrix before reducing it
       continue;
     }
-    if (++halvings_in_a_row_ > options_.max_step_halvings) {
+    const bool exhausted =
+        adaptive() ? h <= h_min * (1.0 + 1e-12) : ++halvings_in_a_row_ > options_.max_step_halvings;
+    if (exhausted) {
       Index worst = -1;
       const double norm = increment_norm(&worst);
       const std::string where = worst < 0 ? std::string("-") : problem_.describe_row(worst);
       throw SolverError(fmt::format(
-          "generalized-α: Newton failed at t = {:.9g} with h = {:.3e} after {} step halvings; "
-          "last weighted increment norm {:.3e}, largest at {}",
-          t_, h, options_.max_step_halvings, norm, where));
+          "generalized-α: Newton failed at t = {:.9g} with h = {:.3e} ({}); last weighted "
+          "increment norm {:.3e}, largest at {}",
+          t_, h,
+          adaptive() ? std::string("h_min reached")
+                     : fmt::format("after {} step halvings", options_.max_step_halvings),
+          norm, where));
     }
-    h_ = 0.5 * h;
-    steps_since_halving_ = 0;
+    if (adaptive()) {
+      ++stats_.rejected_steps;
+      h_ = controller_.after_failure(h);
+    } else {
+      h_ = 0.5 * h;
+      steps_since_halving_ = 0;
+      ++stats_.step_halvings;
+    }
     retried_stale = false;
-    ++stats_.step_halvings;
     klu_.reset_pivoting();
   }
-  stats_.full_factorizations =
-      klu_.full_factorizations() - klu_base_[0] + projector_.full_factorizations() - klu_base_[2];
-  stats_.factorizations = stats_.full_factorizations + klu_.refactorizations() - klu_base_[1] +
-                          projector_.refactorizations() - klu_base_[3];
+  update_factorization_counters();
 }
 
 void GeneralizedAlphaStepper::advance_to(double t_end) {

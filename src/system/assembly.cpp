@@ -82,16 +82,24 @@ void subtract_force_jacobian(const std::vector<Index>& slots, const ForceResult&
 }
 
 // Contact samples: −Q into the dynamic rows of both sides.
+// Also hashes the active samples (FNV-1a over pair and element indices, in visiting order) into
+// a signature of the active set, which the integrators compare across Newton iterations.
 class ResidualContactSink final : public detail::ContactSink {
  public:
-  explicit ResidualContactSink(Eigen::Map<VecX>& r) : r_(r) {}
+  ResidualContactSink(Eigen::Map<VecX>& r, std::uint64_t& signature) : r_(r), hash_(signature) {
+    hash_ = 0;
+  }
   void add(const ContactSampleResult& s, const detail::ContactSampleBlocks& b) override {
     r_.segment<12>(b.first_a) -= s.force.head<12>();
     if (b.first_b >= 0) r_.segment<12>(b.first_b) -= s.force.tail<12>();
+    if (hash_ == 0) hash_ = 14695981039346656037ull;
+    for (const Index x : {b.pair, b.first_a, b.first_b})
+      hash_ = (hash_ ^ static_cast<std::uint64_t>(x)) * 1099511628211ull;
   }
 
  private:
   Eigen::Map<VecX>& r_;
+  std::uint64_t& hash_;
 };
 
 // Contact samples: −w_q ∂Q/∂q and −w_v ∂Q/∂v into the four 12×12 blocks of each sample.
@@ -285,7 +293,7 @@ void assemble_residual(const Model& model, const SystemState& state, double load
     subtract_force(f.blocks, ws.force, 1.0, rq);
   }
   if (model.contact_pair_count() > 0) {
-    ResidualContactSink sink(rq);
+    ResidualContactSink sink(rq, ws.active_contact_signature);
     detail::visit_contact_samples(model, state, ws, {.jacobians = false, .all_samples = false},
                                   sink);
   }

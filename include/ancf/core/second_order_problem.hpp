@@ -7,6 +7,7 @@
 // be tested on anything that implements it.
 #pragma once
 
+#include <cstdint>
 #include <span>
 #include <string>
 
@@ -66,6 +67,12 @@ class SecondOrderProblem {
   /// Total mechanical energy (kinetic + potential of conservative forces) for monitoring [J].
   [[nodiscard]] virtual double energy(double t, std::span<const double> q,
                                       std::span<const double> v) = 0;
+
+  /// A cheap signature of the set of active unilateral contacts (penalty samples with g < 0) at
+  /// the last residual() call; equal signatures mean (up to hash collisions) the same set. An
+  /// integrator that keeps an iteration matrix compares it to decide whether that matrix still has
+  /// the contact stiffness of the current iterate. Default: 0 (no contacts).
+  [[nodiscard]] virtual std::uint64_t active_set_signature() const { return 0; }
 
   /// Human-readable name of unknown / residual row i (i < n: a coordinate, else a constraint row).
   [[nodiscard]] virtual std::string describe_row(Index i) const = 0;

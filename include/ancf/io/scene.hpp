@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "ancf/io/scene_error.hpp"
+#include "ancf/solvers/generalized_alpha.hpp"
 #include "ancf/system/model.hpp"
 
 namespace ancf {
@@ -34,6 +35,13 @@ struct IntegratorSettings {
   bool perturbed_start = false;    ///< generalized-α starting procedure (ABC 2015)
   /// Generalized-α absolute Newton tolerances [m], [m/s], [N].
   double ga_atol_position = 1e-8, ga_atol_velocity = 1e-6, ga_atol_multiplier = 1e-6;
+  /// Generalized-α error-controlled stepping (false: fixed step `step`), its controller (local
+  /// error tolerances [m], h_min, h_max [s]), what a change of h does, and the fresh matrix when
+  /// the active contact set changes.
+  bool ga_error_controlled = false;
+  StepControllerOptions ga_controller;
+  GeneralizedAlphaStepChange ga_step_change = GeneralizedAlphaStepChange::automatic;
+  bool ga_refresh_on_contact_change = false;
 };
 
 /// One probe of the output time series (probes.csv columns, docs/scenes.md).

@@ -54,6 +54,7 @@
 
 #include "ancf/core/klu_solver.hpp"
 #include "ancf/core/second_order_problem.hpp"
+#include "ancf/solvers/step_controller.hpp"
 
 namespace ancf {
 
@@ -62,6 +63,9 @@ struct GeneralizedAlphaParameters {
   double rho_infinity = 0.0, alpha_m = 0.0, alpha_f = 0.0, gamma = 0.0, beta = 0.0;
   /// Throws std::invalid_argument unless 0 ≤ ρ∞ ≤ 1.
   [[nodiscard]] static GeneralizedAlphaParameters chung_hulbert(double rho_infinity);
+  /// C of the local position error C h³ q''' + O(h⁴) of one step, C = Δ/2 + β − 1/6 with
+  /// Δ = α_m − α_f (docs/time_step_control.md); 1/12 + Δ²/4 for the Chung–Hulbert parameters.
+  [[nodiscard]] double local_error_constant() const;
 };
 
 enum class GeneralizedAlphaFormulation { index3, stabilized_index2 };
@@ -73,6 +77,17 @@ enum class GeneralizedAlphaStart {
 enum class GeneralizedAlphaPredictor {
   constant,      ///< q''_{n+1} = q''_n, λ_{n+1} = λ_n (exact for constant acceleration)
   extrapolated,  ///< linear extrapolation from the last two steps
+};
+/// Step-size selection.
+enum class GeneralizedAlphaStepping {
+  fixed,             ///< the nominal h; halved on Newton failure, then doubled back (default)
+  error_controlled,  ///< h from the local error estimate C h²(a_{n+1} − a_n) and a StepController
+};
+/// What a change of h does to the h-dependent parts of the state (see step()).
+enum class GeneralizedAlphaStepChange {
+  automatic,  ///< restart for fixed stepping, rescale for error-controlled stepping
+  restart,    ///< the starting procedure of initialize() at the accepted (t, q, v)
+  rescale,    ///< a ← q'' + (h_new/h_old)(a − q''); index 3 also the normal part of v
 };
 enum class NewtonStrategy {
   full,      ///< new analytic iteration matrix and factorization at every iteration
@@ -114,6 +129,20 @@ struct GeneralizedAlphaOptions {
   /// doubled again (towards step_size). Every change of h restarts the scheme (see step()).
   int max_step_halvings = 12;
   int recovery_steps = 4;
+
+  GeneralizedAlphaStepping stepping = GeneralizedAlphaStepping::fixed;
+  /// Error-controlled stepping: tolerances of the local position error [m] and step limits;
+  /// step_size is the first step. A Newton failure shrinks h by controller.failure_shrink.
+  StepControllerOptions controller;
+  GeneralizedAlphaStepChange step_change = GeneralizedAlphaStepChange::automatic;
+  /// Filter the local error estimate through the iteration matrix (ẽ = S⁻¹[w_a M e; 0]), so that
+  /// unresolved stiff modes, which the scheme damps, do not drive h down
+  /// (docs/time_step_control.md).
+  bool filter_error_estimate = true;
+  /// Build a fresh iteration matrix when the problem's active_set_signature() changed since the
+  /// matrix in use was built (a contact became active or inactive), instead of first letting the
+  /// old factorization fail (modified Newton only).
+  bool refresh_on_active_set_change = false;
 };
 
 /// Counters; deterministic where wall time is not (REFERENCES §9).
@@ -125,10 +154,15 @@ struct GeneralizedAlphaStatistics {
   long factorizations = 0;        ///< numeric factorizations (full + refactor, both matrices)
   long full_factorizations = 0;   ///< of those, with fresh pivoting
   long convergence_failures = 0;  ///< Newton failures (each followed by a retry or a halving)
-  long step_halvings = 0;
-  long restarts = 0;          ///< starting procedures (initialize and every change of h)
-  double min_step = 0.0;      ///< smallest step taken [s]
-  double wall_seconds = 0.0;  ///< inside initialize/step/advance_to
+  long step_halvings = 0;         ///< fixed stepping: halvings after Newton failures
+  long rejected_steps = 0;        ///< error-controlled: error-test and Newton failures, retried
+  long error_test_failures = 0;   ///< error-controlled: steps whose local error estimate was > 1
+  long step_size_changes = 0;     ///< changes of h between attempts (each a rescale or restart)
+  long active_set_refreshes = 0;  ///< matrices rebuilt because the active contact set changed
+  long restarts = 0;              ///< starting procedures (initialize and every change of h)
+  double min_step = 0.0;          ///< smallest step taken [s]
+  double max_step = 0.0;          ///< largest step taken [s]
+  double wall_seconds = 0.0;      ///< inside initialize/step/advance_to
 };
 
 /// Owns the KLU symbolic analysis of problem.iteration_pattern() (done once, in the
@@ -145,13 +179,18 @@ class GeneralizedAlphaStepper {
   void initialize(double t0);
   void initialize(double t0, const VecX& q0, const VecX& v0);
 
-  /// One step of the current size (the nominal h unless a failure reduced it), or shorter if
-  /// `t_limit` is closer (within 1e-8 h of one step, t_limit is hit with the current h). A change
-  /// of h restarts the scheme from the accepted (t, q, v): v projected onto the velocity
-  /// constraint, q'' and λ from the index-1 system, a (and v) as options.start says, because the
-  /// index-3 recursion does not survive a run of step-size changes (halvings) otherwise.
-  /// Throws SolverError after max_step_halvings failures in a row; the state is then the last
-  /// accepted one.
+  /// One step of the current size, or shorter if `t_limit` is closer (within 1e-8 h of one step,
+  /// t_limit is hit with the current h).
+  ///  * fixed stepping: the nominal h unless a Newton failure halved it. Throws SolverError after
+  ///    max_step_halvings failures in a row.
+  ///  * error-controlled: the step is accepted when the weighted RMS norm of the local error
+  ///    estimate C h²(a_{n+1} − a_n) (options.controller tolerances) is ≤ 1, and the controller
+  ///    proposes the next h; a rejected step or a Newton failure is retried from the accepted state
+  ///    with a smaller h. Throws SolverError when that would go below controller.h_min.
+  /// A change of h either restarts the scheme from the accepted (t, q, v) (v projected onto the
+  /// velocity constraint, q'' and λ from the index-1 system, a and v as options.start says) or
+  /// rescales a and, index 3, the constraint-normal part of v to the new h (options.step_change,
+  /// docs/time_step_control.md). After a throw the state is the last accepted one.
   void step(double t_limit = std::numeric_limits<double>::infinity());
   /// Steps until t == t_end exactly (the last step is shortened if needed).
   void advance_to(double t_end);
@@ -186,6 +225,14 @@ class GeneralizedAlphaStepper {
   void update_weights(double gamma_prime);
   [[nodiscard]] double increment_norm(Index* worst = nullptr) const;
   void change_step_size(double h_new);
+  void rescale(double h_new);
+  [[nodiscard]] double attempt_size(double remaining, bool& last) const;
+  [[nodiscard]] double local_error(double h);  // sets a1_ = a_{n+1}; 0 for fixed stepping
+  void accept(double t1, double h, bool on_base, bool last);
+  [[nodiscard]] bool adaptive() const {
+    return options_.stepping == GeneralizedAlphaStepping::error_controlled;
+  }
+  void update_factorization_counters();
 
   SecondOrderProblem& problem_;
   GeneralizedAlphaOptions options_;
@@ -202,8 +249,8 @@ class GeneralizedAlphaStepper {
   VecX acc_previous_, lambda_previous_;
   double previous_h_ = 0.0;
   bool have_previous_ = false;
-  // Step attempt (the iterate of step n → n + 1).
-  VecX q1_, v1_, acc1_, lambda1_;
+  // Step attempt (the iterate of step n → n + 1) and its a_{n+1} from (AB 7).
+  VecX q1_, v1_, acc1_, lambda1_, a1_;
   // Inverse error weights of the current step attempt (Δv weights include γ').
   Eigen::ArrayXd weight_q_, weight_v_;
   double weight_lambda_ = 1.0;
@@ -221,8 +268,10 @@ class GeneralizedAlphaStepper {
   double eta_ = 1.0;          // θ/(1 − θ) estimate carried across steps
   int steps_since_halving_ = 0;
   int halvings_in_a_row_ = 0;
-  double step_max_rate_ = 0.0;       // largest contraction rate θ seen in the current step
-  long klu_base_[4] = {0, 0, 0, 0};  // KLU counters at initialize()
+  double step_max_rate_ = 0.0;          // largest contraction rate θ seen in the current step
+  StepController controller_;           // error-controlled stepping
+  std::uint64_t matrix_signature_ = 0;  // active_set_signature() when the matrix was built
+  long klu_base_[4] = {0, 0, 0, 0};     // KLU counters at initialize()
   GeneralizedAlphaStatistics stats_;
 };
 

@@ -36,6 +36,9 @@ struct Workspace {
   std::vector<Index> candidates;
   ContactSampleResult contact;
   long narrow_phase_samples = 0;  ///< contact samples that reached a kernel (cumulative counter)
+  /// Hash of the active contact samples (pair and elements of each, in visiting order) of the
+  /// last assemble_residual; 0 when none is active.
+  std::uint64_t active_contact_signature = 0;
   explicit Workspace(const Model& model);
   /// Frame kinematics at t (recomputed only when t changes).
   std::span<const FrameKinematics> frames_at(const Model& model, double t);

@@ -38,6 +38,10 @@ class MultibodyProblem final : public SecondOrderProblem {
   [[nodiscard]] double energy(double t, std::span<const double> q,
                               std::span<const double> v) override;
   [[nodiscard]] std::string describe_row(Index i) const override { return model_.describe_row(i); }
+  /// Hash of the active contact samples of the last residual() (Workspace).
+  [[nodiscard]] std::uint64_t active_set_signature() const override {
+    return workspace_.active_contact_signature;
+  }
   [[nodiscard]] const VecX& initial_coordinates() const override {
     return model_.initial_coordinates();
   }
