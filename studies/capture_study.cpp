@@ -6,7 +6,7 @@
 //                     [--friction MU] [--regularization-speed V] [--step H] [--rtol R] [--rho-inf R] [--axial-damping C]
 //                     [--bending EI] [--bending-damping CB] [--mass-damping ALPHA] [--no-rope-rope] [--index2] [--free-pole] [--out DIR]
 //                     [--error-control] [--error-rtol R] [--error-atol A] [--h-min H] [--h-max H]
-//                     [--step-change automatic|restart|rescale] [--refresh-on-contact]
+//                     [--step-change automatic|restart|rescale|rescale_with_velocity] [--refresh-on-contact] [--newton-damping N]
 // Overrides change the scene's TOML before it is built (element counts, and the rope–rope
 // candidate ranges with them; drive ω_max; pole tilt; friction of every pair; rope damping and
 // bending, mass-proportional damping α [1/s]; rope–rope pairs off; integrator; generalized-α
@@ -49,6 +49,7 @@ struct Options {
   bool error_control = false, refresh_on_contact = false;
   double error_rtol = 0.0, error_atol = 0.0, h_min = 0.0, h_max = -1.0;
   std::string step_change;
+  long newton_damping = -1;
 };
 
 Options parse(int argc, char** argv) {
@@ -84,6 +85,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--h-max") o.h_max = std::stod(value());
     else if (a == "--step-change") o.step_change = value();
     else if (a == "--refresh-on-contact") o.refresh_on_contact = true;
+    else if (a == "--newton-damping") o.newton_damping = std::stol(value());
     else if (a == "--out") o.out = value();
     else throw std::invalid_argument("unknown option " + a);
   }
@@ -163,6 +165,7 @@ std::string apply_overrides(const Options& o) {
   if (o.h_max >= 0.0) genalpha.insert_or_assign("h_max", o.h_max);
   if (!o.step_change.empty()) genalpha.insert_or_assign("step_change", o.step_change);
   if (o.refresh_on_contact) genalpha.insert_or_assign("refresh_on_contact_change", true);
+  if (o.newton_damping >= 0) genalpha.insert_or_assign("newton_damping", static_cast<int64_t>(o.newton_damping));
   if (o.step > 0.0) {
     const char* group = o.integrator == "ida" ? "ida" : "genalpha";
     if (!integrator.contains(group)) integrator.insert_or_assign(group, toml::table{});

@@ -40,13 +40,17 @@ IntegratorSettings read_integrator(TableReader& root) {
     c.h_min = ga->number_or("h_min", c.h_min, Range::positive);
     c.h_max = ga->number_or("h_max", c.h_max, Range::non_negative);
     if (c.h_max > 0.0 && c.h_max < c.h_min) ga->fail("h_max", "expected h_max >= h_min (0: none)");
-    const std::string change =
-        ga->choice("step_change", {"automatic", "restart", "rescale"}, "automatic");
+    const std::string change = ga->choice(
+        "step_change", {"automatic", "restart", "rescale", "rescale_with_velocity"}, "automatic");
     s.ga_step_change = change == "restart"   ? GeneralizedAlphaStepChange::restart
                        : change == "rescale" ? GeneralizedAlphaStepChange::rescale
-                                             : GeneralizedAlphaStepChange::automatic;
+                       : change == "rescale_with_velocity"
+                           ? GeneralizedAlphaStepChange::rescale_with_velocity
+                           : GeneralizedAlphaStepChange::automatic;
     s.ga_refresh_on_contact_change =
         ga->boolean_or("refresh_on_contact_change", s.ga_refresh_on_contact_change);
+    s.ga_max_damping_halvings =
+        static_cast<int>(ga->integer_or("newton_damping", s.ga_max_damping_halvings, 0));
     if (!s.stabilized_index2 && s.rho_infinity >= 1.0)
       ga->fail("rho_infinity",
                "index 3 with rho_infinity = 1 is unstable: use rho_infinity < 1 or "

@@ -71,6 +71,7 @@ void run_genalpha(const Model& model, const IntegratorSettings& s, const std::ve
   o.controller = s.ga_controller;
   o.step_change = s.ga_step_change;
   o.refresh_on_active_set_change = s.ga_refresh_on_contact_change;
+  o.max_damping_halvings = s.ga_max_damping_halvings;
   GeneralizedAlphaStepper ga(problem, o);
   SystemState state = SystemState::initial(model);
   auto snapshot = [&] {
@@ -97,6 +98,7 @@ void run_genalpha(const Model& model, const IntegratorSettings& s, const std::ve
                          {"step size changes", st.step_size_changes},
                          {"min step [ns]", std::lround(1e9 * st.min_step)},
                          {"max step [ns]", std::lround(1e9 * st.max_step)}});
+    if (o.max_damping_halvings > 0) c.push_back({"damped iterations", st.damped_iterations});
     if (o.refresh_on_active_set_change)
       c.push_back({"active-set refreshes", st.active_set_refreshes});
   };

@@ -77,6 +77,8 @@ GeneralizedAlphaStepper::GeneralizedAlphaStepper(SecondOrderProblem& problem,
   weight_v_.setZero(n_);
   residual_.setZero(size);
   rhs_.setZero(size);
+  last_step_.setZero(size);
+  last_q_step_.setZero(n_);
   values_.setZero(problem.iteration_pattern().nonzeros());
   projector_values_.setZero(problem.iteration_pattern().nonzeros());
 }
@@ -299,11 +301,39 @@ GeneralizedAlphaStepper::Outcome GeneralizedAlphaStepper::newton(double t1, doub
   // solution underestimate those further away, and accepting a large first increment on an old
   // small rate lets index-3 position errors (amplified by h⁻² in λ and q'') build up.
   double eta = full ? 1.0 : std::max(1.0, eta_);
+  // Damped Newton (Deuflhard, Newton Methods for Nonlinear Problems, Springer 2004, §3.3: the
+  // natural monotonicity test): with the chord matrix S fixed, Δ̄ = −S⁻¹F(x_k + λΔ_k) is the
+  // simplified correction at the trial point, and ‖Δ̄‖ ≤ (1 − λ/4)‖Δ_k‖ accepts it. A full step
+  // (λ = 1) that diverges (θ ≥ 0.99) with a matrix built in this attempt is not given up but
+  // halved along Δ_k, up to max_damping_halvings times: across the penalty onset or a cable
+  // going slack the full step overshoots while the direction is good. x moves along Δ_k through
+  // the update maps (q, v = γ'Δq, q'' = β'Δq, λ), so no state is copied.
+  double damping = 1.0;  // λ of the trial point x_{k−1} + λΔ_k
+  int damping_halvings = 0;
+  const bool may_damp = !full && options_.max_damping_halvings > 0;
+  auto move_along_last = [&](double factor) {
+    q1_ += factor * last_q_step_;
+    v1_ += (factor * gamma_prime) * last_step_.head(n_);
+    acc1_ += (factor * beta_prime) * last_step_.head(n_);
+    lambda1_ += factor * last_step_.tail(m_);
+  };
+  auto damp = [&]() {  // back along Δ_k to half the current λ
+    move_along_last(-0.5 * damping);
+    damping *= 0.5;
+    ++damping_halvings;
+    ++stats_.damped_iterations;
+  };
   for (int left = options_.max_iterations; left > 0; --left) {
     problem_.residual(t1, as_span(q1_), as_span(v1_), as_span(acc1_), as_span(lambda1_),
                       as_span(residual_));
     ++stats_.residual_evaluations;
-    if (!residual_.allFinite()) return fresh ? Outcome::failed : Outcome::diverged_stale;
+    if (!residual_.allFinite()) {
+      if (may_damp && fresh && k >= 1 && damping_halvings < options_.max_damping_halvings) {
+        damp();
+        continue;
+      }
+      return fresh ? Outcome::failed : Outcome::diverged_stale;
+    }
     if (index2 && m_ > 0)
       problem_.velocity_constraint(t1, as_span(q1_), as_span(v1_), as_span(velocity_residual_));
     // A contact that became active (or inactive) since the chord matrix was built changes the
@@ -351,9 +381,27 @@ GeneralizedAlphaStepper::Outcome GeneralizedAlphaStepper::newton(double t1, doub
       increment_ += residual_.head(n_);
     }
     const double norm = increment_norm();
+    if (k > 1 && may_damp && fresh && damping_halvings < options_.max_damping_halvings &&
+        !(norm <= (damping < 1.0 ? 1.0 - 0.25 * damping : 0.99) * previous_norm)) {
+      // The trial point fails the monotonicity test: undo the correction just applied, then
+      // go back along Δ_k.
+      q1_ -= increment_;
+      v1_ -= gamma_prime * rhs_.head(n_);
+      acc1_ -= beta_prime * rhs_.head(n_);
+      lambda1_ -= rhs_.tail(m_);
+      damp();
+      continue;
+    }
+    last_step_ = rhs_;
+    last_q_step_ = increment_;
     if (!std::isfinite(norm)) return fresh ? Outcome::failed : Outcome::diverged_stale;
     if (norm == 0.0) return Outcome::converged;
-    if (k > 1) {
+    if (k > 1 && damping < 1.0) {
+      // An accepted damped trial: go on with full steps from here; its ratio is no contraction
+      // rate of the iteration, so η keeps its value.
+      damping = 1.0;
+      step_max_rate_ = std::max(step_max_rate_, norm / previous_norm);
+    } else if (k > 1) {
       const double theta = norm / previous_norm;
       step_max_rate_ = std::max(step_max_rate_, theta);
       // Divergence (θ ≥ 0.99), or predicted failure: at this rate the remaining iterations cannot
@@ -369,6 +417,7 @@ GeneralizedAlphaStepper::Outcome GeneralizedAlphaStepper::newton(double t1, doub
           return fresh ? Outcome::failed : Outcome::diverged_stale;
         ++rescues;
         matrix_stale_ = true;
+        damping_halvings = 0;
         left = options_.max_iterations + 1;
         previous_norm = 0.0;
         eta = std::max(1.0, eta);  // no rate known for the new matrix yet
@@ -489,7 +538,7 @@ void GeneralizedAlphaStepper::step(double t_limit) {
     if (outcome == Outcome::converged) {
       const double err = local_error(h);
       if (adaptive()) {
-        const StepDecision d = controller_.decide(h, err);
+        const StepDecision d = controller_.decide(h, err, step_max_rate_);
         if (!d.accept) {
           ++stats_.error_test_failures;
           ++stats_.rejected_steps;
@@ -506,6 +555,7 @@ void GeneralizedAlphaStepper::step(double t_limit) {
         // error asks for a smaller step.
         h_ = h < h_ && d.h_next >= h ? std::max(h_, d.h_next) : d.h_next;
       }
+      last_error_ = err;
       accept(t1, h, on_base, last);
       if (!adaptive() && h_ < options_.step_size &&
           ++steps_since_halving_ >= options_.recovery_steps) {

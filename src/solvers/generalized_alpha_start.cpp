@@ -3,7 +3,7 @@
 // (Arnold & Brüls 2007), and, for index 3, the constraint-normal part of v_n = v(t_n) + c h² q'''
 // (c = 1/6 − Δ/2 − β, derived in shift_normal_velocity). The starting procedure sets these parts
 // for the first h; a change of h either repeats it (restart) or moves them to the new h
-// (rescale). docs/time_step_control.md measures both.
+// (rescale). docs/time_step_control.md measures the variants.
 #include <cmath>
 
 #include "ancf/solvers/generalized_alpha.hpp"
@@ -69,14 +69,17 @@ void GeneralizedAlphaStepper::shift_normal_velocity(double t, double factor) {
 
 void GeneralizedAlphaStepper::rescale(double h_new) {
   // Move the h-dependent parts of the expansion from a_h_ to h_new: a − q'' = Δh q''' + O(h²)
-  // scales with h, and (index 3) the normal part of v moves by c(h_new² − h_old²) q''' with
-  // q''' = (a_new − q'')/(Δ h_new) + O(h); the shift uses the factor on (a_new − q'') that
-  // shift_normal_velocity expects. No residual, no index-1 solve: λ and q'' keep their values.
+  // scales with h, and (index 3, rescale_with_velocity) the normal part of v moves by
+  // c(h_new² − h_old²) q''' with q''' = (a_new − q'')/(Δ h_new) + O(h); the shift uses the factor
+  // on (a_new − q'') that shift_normal_velocity expects. No residual, no index-1 solve: λ and q''
+  // keep their values. Without the velocity shift the O(h²) normal-velocity mismatch becomes an
+  // O(h) transient of λ that decays like nρ∞ⁿ (as after the consistent start); with it, a − q''
+  // that is not Δh q''' (unresolved stiff contact) is amplified by h_old²/h_new into v.
   const GeneralizedAlphaParameters& p = params_;
   const double delta = p.alpha_m - p.alpha_f, h_old = a_h_;
   a_ = acc_ + (h_new / h_old) * (a_ - acc_);
   a_h_ = h_new;
-  if (delta != 0.0)
+  if (delta != 0.0 && options_.step_change == GeneralizedAlphaStepChange::rescale_with_velocity)
     shift_normal_velocity(
         t_, (1.0 / 6.0 - 0.5 * delta - p.beta) * (h_new * h_new - h_old * h_old) / (delta * h_new));
 }
@@ -89,9 +92,9 @@ void GeneralizedAlphaStepper::change_step_size(double h_new) {
   // h-dependent parts instead (rescale): no O(h) λ transient and no index-1 solve per change.
   if (h_new == a_h_) return;
   ++stats_.step_size_changes;
-  const bool rescaling =
-      options_.step_change == GeneralizedAlphaStepChange::rescale ||
-      (options_.step_change == GeneralizedAlphaStepChange::automatic && adaptive());
+  const bool rescaling = options_.step_change == GeneralizedAlphaStepChange::automatic
+                             ? adaptive()
+                             : options_.step_change != GeneralizedAlphaStepChange::restart;
   if (rescaling)
     rescale(h_new);
   else

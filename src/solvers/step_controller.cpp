@@ -22,6 +22,10 @@ StepController::StepController(const StepControllerOptions& o, int order)
   require(o.max_growth >= 1.0, "max_growth must be >= 1");
   require(o.max_shrink > 0.0 && o.max_shrink < 1.0, "max_shrink must lie in (0, 1)");
   require(o.failure_shrink > 0.0 && o.failure_shrink < 1.0, "failure_shrink must lie in (0, 1)");
+  require(o.failure_ceiling > 0.0 && o.failure_ceiling <= 1.0,
+          "failure_ceiling must lie in (0, 1]");
+  require(o.ceiling_growth >= 1.0, "ceiling_growth must be >= 1");
+  require(o.easy_rate > 0.0 && o.easy_rate < 1.0, "easy_rate must lie in (0, 1)");
   require(o.growth_threshold >= 1.0 && o.growth_threshold <= o.max_growth,
           "growth_threshold must lie in [1, max_growth]");
 }
@@ -43,7 +47,7 @@ double StepController::clamp(double h) const {
   return std::max(h, options_.h_min);
 }
 
-StepDecision StepController::decide(double h, double err) {
+StepDecision StepController::decide(double h, double err, double rate) {
   if (!(err <= 1.0)) {
     // Rejected (NaN and ∞ included): shrink by the asymptotic model, at least to max_shrink·h.
     const double ratio =
@@ -64,17 +68,24 @@ StepDecision StepController::decide(double h, double err) {
   // Hysteresis: grow only by a worthwhile factor; shrink whenever the estimate asks for it.
   if (ratio >= 1.0 && ratio < options_.growth_threshold) ratio = 1.0;
   ratio = std::max(ratio, options_.max_shrink);
-  return {true, clamp(h * ratio)};
+  double h_next = h * ratio;
+  if (ceiling_ > 0.0) {
+    h_next = std::min(h_next, ceiling_);
+    if (rate <= options_.easy_rate) ceiling_ *= options_.ceiling_growth;
+  }
+  return {true, clamp(h_next)};
 }
 
 double StepController::after_failure(double h) {
   after_rejection_ = true;
+  ceiling_ = options_.failure_ceiling * h;
   return clamp(h * options_.failure_shrink);
 }
 
 void StepController::reset() {
   previous_error_ = -1.0;
   after_rejection_ = false;
+  ceiling_ = 0.0;
 }
 
 }  // namespace ancf

@@ -42,6 +42,7 @@ struct IntegratorSettings {
   StepControllerOptions ga_controller;
   GeneralizedAlphaStepChange ga_step_change = GeneralizedAlphaStepChange::automatic;
   bool ga_refresh_on_contact_change = false;
+  int ga_max_damping_halvings = 0;  ///< damped Newton (GeneralizedAlphaOptions), 0: off
 };
 
 /// One probe of the output time series (probes.csv columns, docs/scenes.md).

@@ -83,11 +83,14 @@ enum class GeneralizedAlphaStepping {
   fixed,             ///< the nominal h; halved on Newton failure, then doubled back (default)
   error_controlled,  ///< h from the local error estimate C h²(a_{n+1} − a_n) and a StepController
 };
-/// What a change of h does to the h-dependent parts of the state (see step()).
+/// What a change of h does to the h-dependent parts of the state (see step(),
+/// docs/time_step_control.md for the measurements behind the default).
 enum class GeneralizedAlphaStepChange {
   automatic,  ///< restart for fixed stepping, rescale for error-controlled stepping
   restart,    ///< the starting procedure of initialize() at the accepted (t, q, v)
-  rescale,    ///< a ← q'' + (h_new/h_old)(a − q''); index 3 also the normal part of v
+  rescale,    ///< a ← q'' + (h_new/h_old)(a − q''); λ keeps an O(h) transient per change
+  rescale_with_velocity,  ///< rescale, and (index 3) the normal part of v: λ second order on
+                          ///< smooth motion, but amplifies noise in a − q'' (stiff contact)
 };
 enum class NewtonStrategy {
   full,      ///< new analytic iteration matrix and factorization at every iteration
@@ -123,6 +126,10 @@ struct GeneralizedAlphaOptions {
   /// iteration diverges (or is predicted not to converge) is rebuilt at the current iterate.
   double max_reuse_rate = 0.1;
   int max_matrix_age = 1000;
+  /// Modified Newton: a full step that diverges with a matrix built in the attempt is halved
+  /// back along its direction (Deuflhard's natural monotonicity test) up to this many times per
+  /// matrix before the attempt fails; 0: off.
+  int max_damping_halvings = 0;
 
   /// On Newton failure (with a fresh matrix) the step is halved from the last accepted state, at
   /// most this many times in a row; after recovery_steps accepted steps at a reduced size it is
@@ -159,6 +166,7 @@ struct GeneralizedAlphaStatistics {
   long error_test_failures = 0;   ///< error-controlled: steps whose local error estimate was > 1
   long step_size_changes = 0;     ///< changes of h between attempts (each a rescale or restart)
   long active_set_refreshes = 0;  ///< matrices rebuilt because the active contact set changed
+  long damped_iterations = 0;     ///< Newton trial points halved back (max_damping_halvings)
   long restarts = 0;              ///< starting procedures (initialize and every change of h)
   double min_step = 0.0;          ///< smallest step taken [s]
   double max_step = 0.0;          ///< largest step taken [s]
@@ -202,6 +210,9 @@ class GeneralizedAlphaStepper {
   [[nodiscard]] const VecX& pseudo_accelerations() const { return a_; }  ///< a of (AB 7)
   [[nodiscard]] const VecX& multipliers() const { return lambda_; }      ///< λ
   [[nodiscard]] double current_step_size() const { return h_; }
+  /// Error-controlled stepping: the weighted norm of the local error estimate of the last
+  /// accepted step (≤ 1; 0 for fixed stepping).
+  [[nodiscard]] double last_error_norm() const { return last_error_; }
   [[nodiscard]] const GeneralizedAlphaParameters& parameters() const { return params_; }
   [[nodiscard]] const GeneralizedAlphaOptions& options() const { return options_; }
   [[nodiscard]] const GeneralizedAlphaStatistics& statistics() const { return stats_; }
@@ -256,6 +267,7 @@ class GeneralizedAlphaStepper {
   double weight_lambda_ = 1.0;
   // Scratch.
   VecX residual_, rhs_, values_, projector_values_, velocity_residual_, increment_, phi_;
+  VecX last_step_, last_q_step_;  // the Newton increment last applied (rhs_, increment_ form)
 
   double h_ = 0.0;       // current step size
   double t_base_ = 0.0;  // t_ = t_base_ + steps_from_base_ · base_h_ (see step())
@@ -270,6 +282,7 @@ class GeneralizedAlphaStepper {
   int halvings_in_a_row_ = 0;
   double step_max_rate_ = 0.0;          // largest contraction rate θ seen in the current step
   StepController controller_;           // error-controlled stepping
+  double last_error_ = 0.0;             // estimate of the last accepted step
   std::uint64_t matrix_signature_ = 0;  // active_set_signature() when the matrix was built
   long klu_base_[4] = {0, 0, 0, 0};     // KLU counters at initialize()
   GeneralizedAlphaStatistics stats_;
