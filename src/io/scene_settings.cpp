@@ -12,6 +12,9 @@ IntegratorSettings read_integrator(TableReader& root) {
                                                                    : IntegratorKind::genalpha;
   s.t_end = t.number_or("t_end", s.t_end, Range::positive);
   s.rtol = t.number_or("rtol", s.rtol, Range::positive);
+  s.contact_pattern = t.choice("contact_pattern", {"near", "all"}, "near") == "all"
+                          ? ContactPatternPolicy::all
+                          : ContactPatternPolicy::near;
   if (auto ida = t.optional_table("ida")) {
     s.ida_atol_position = ida->number_or("atol_position", s.ida_atol_position, Range::positive);
     s.ida_atol_velocity = ida->number_or("atol_velocity", s.ida_atol_velocity, Range::positive);

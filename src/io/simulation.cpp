@@ -11,8 +11,8 @@ namespace ancf {
 namespace {
 
 void run_ida(const Model& model, const IntegratorSettings& s, const std::vector<double>& times,
-             const SimulationHooks& hooks, SimulationCounters& c) {
-  GglProblem problem(model);
+             const SimulationHooks& hooks, SimulationCounters& c, SimulationTimings& timings) {
+  GglProblem problem(model, {}, ContactPatternOptions{.policy = s.contact_pattern});
   IdaOptions o;
   o.rtol = s.rtol;
   o.atol_position = s.ida_atol_position;
@@ -35,7 +35,20 @@ void run_ida(const Model& model, const IntegratorSettings& s, const std::vector<
          {"Newton iterations", st.nonlinear_iterations},
          {"error test failures", st.error_test_failures},
          {"convergence failures", st.convergence_failures},
-         {"KLU re-pivotings", st.klu_repivots}};
+         {"KLU re-pivotings", st.klu_repivots},
+         {"pattern changes", st.pattern_changes},
+         {"symbolic analyses", st.symbolic_analyses},
+         {"pattern non-zeros (largest)", problem.contact_pattern().statistics().most_nonzeros},
+         {"contact samples evaluated", problem.workspace().narrow_phase_samples}};
+    const Workspace& ws = problem.workspace();
+    const double kernels = ws.element_seconds, contact = ws.contact_seconds;
+    timings = {{"wall", st.wall_time},
+               {"element kernels", kernels},
+               {"contact", contact},
+               {"assembly (rest of residual and Jacobian)",
+                st.residual_seconds + st.jacobian_seconds - kernels - contact},
+               {"IDA (BDF, Newton, KLU factorization and solves)",
+                st.wall_time - st.residual_seconds - st.jacobian_seconds}};
   };
   try {
     ida.run([&](double t, std::span<const double> y, std::span<const double> yp) {
@@ -51,14 +64,15 @@ void run_ida(const Model& model, const IntegratorSettings& s, const std::vector<
 }
 
 void run_genalpha(const Model& model, const IntegratorSettings& s, const std::vector<double>& times,
-                  const SimulationHooks& hooks, SimulationCounters& c) {
-  MultibodyProblem problem(model);
+                  const SimulationHooks& hooks, SimulationCounters& c, SimulationTimings& timings) {
+  MultibodyProblem problem(model, ContactPatternOptions{.policy = s.contact_pattern});
   GeneralizedAlphaOptions o;
   o.step_size = s.step;
   o.rho_infinity = s.rho_infinity;
-  o.formulation =
-      s.stabilized_index2 ? GeneralizedAlphaFormulation::stabilized_index2 : GeneralizedAlphaFormulation::index3;
-  o.start = s.perturbed_start ? GeneralizedAlphaStart::perturbed : GeneralizedAlphaStart::consistent;
+  o.formulation = s.stabilized_index2 ? GeneralizedAlphaFormulation::stabilized_index2
+                                      : GeneralizedAlphaFormulation::index3;
+  o.start =
+      s.perturbed_start ? GeneralizedAlphaStart::perturbed : GeneralizedAlphaStart::consistent;
   o.rtol = s.rtol;
   o.atol_position = s.ga_atol_position;
   o.atol_velocity = s.ga_atol_velocity;
@@ -80,9 +94,27 @@ void run_genalpha(const Model& model, const IntegratorSettings& s, const std::ve
          {"residual evaluations", st.residual_evaluations},
          {"matrix evaluations", st.matrix_evaluations},
          {"factorizations", st.factorizations},
+         {"full factorizations", st.full_factorizations},
+         {"refactorizations", st.factorizations - st.full_factorizations},
+         {"symbolic analyses", st.symbolic_analyses},
+         {"pattern changes", st.pattern_changes},
+         {"pattern non-zeros (largest)", problem.contact_pattern().statistics().most_nonzeros},
+         {"contact samples evaluated", problem.workspace().narrow_phase_samples},
          {"convergence failures", st.convergence_failures},
          {"step halvings", st.step_halvings},
          {"restarts", st.restarts}};
+    const Workspace& ws = problem.workspace();
+    const double kernels = ws.element_seconds, contact = ws.contact_seconds;
+    timings = {{"wall", st.wall_seconds},
+               {"element kernels", kernels},
+               {"contact", contact},
+               {"assembly (rest of residual and matrix)",
+                problem.residual_seconds() + problem.matrix_seconds() - kernels - contact},
+               {"factorization", st.factor_seconds},
+               {"solves", st.solve_seconds},
+               {"stepper (predictor, updates, tests)",
+                st.wall_seconds - problem.residual_seconds() - problem.matrix_seconds() -
+                    st.factor_seconds - st.solve_seconds}};
   };
   ga.initialize(0.0);
   snapshot();
@@ -112,12 +144,20 @@ std::vector<double> output_times(double interval, double t_end) {
   return t;
 }
 
-void simulate(const Model& model, const IntegratorSettings& settings, const std::vector<double>& times,
-              const SimulationHooks& hooks, SimulationCounters& counters) {
+void simulate(const Model& model, const IntegratorSettings& settings,
+              const std::vector<double>& times, const SimulationHooks& hooks,
+              SimulationCounters& counters, SimulationTimings& timings) {
   if (settings.kind == IntegratorKind::ida)
-    run_ida(model, settings, times, hooks, counters);
+    run_ida(model, settings, times, hooks, counters, timings);
   else
-    run_genalpha(model, settings, times, hooks, counters);
+    run_genalpha(model, settings, times, hooks, counters, timings);
+}
+
+void simulate(const Model& model, const IntegratorSettings& settings,
+              const std::vector<double>& times, const SimulationHooks& hooks,
+              SimulationCounters& counters) {
+  SimulationTimings timings;
+  simulate(model, settings, times, hooks, counters, timings);
 }
 
 }  // namespace ancf

@@ -86,13 +86,32 @@ MatrixWeights GeneralizedAlphaStepper::iteration_weights(double h, bool scaled) 
 
 // --- start ---------------------------------------------------------------------------------------
 
+void GeneralizedAlphaStepper::update_pattern(double t, const VecX& q, const VecX& v, double h) {
+  // The problem's pattern may follow the state (contact pairs that are near, DESIGN §5): then the
+  // value arrays take its new size and each factorization re-runs its symbolic analysis first.
+  if (!problem_.update_pattern(t, as_span(q), as_span(v), h)) return;
+  ++pattern_revision_;
+  ++stats_.pattern_changes;
+  const Index nnz = problem_.iteration_pattern().nonzeros();
+  values_.setZero(nnz);
+  projector_values_.setZero(nnz);
+}
+
+void GeneralizedAlphaStepper::factor(KluSolver& klu, long& revision, const VecX& values) {
+  if (revision != pattern_revision_) {
+    klu.analyze();
+    revision = pattern_revision_;
+  }
+  klu.factor(as_span(values));
+}
+
 void GeneralizedAlphaStepper::refresh_projector(double t, const VecX& q) {
   // [M Φ_qᵀ; Φ_q 0] (weights (0, 0, 1): no stiffness, damping or geometric term). v, a and λ do
   // not enter; acc1_ is only a correctly sized argument.
   problem_.iteration_matrix(t, as_span(q), as_span(v_), as_span(acc1_), as_span(lambda_),
                             MatrixWeights{0.0, 0.0, 1.0}, as_span(projector_values_));
   ++stats_.matrix_evaluations;
-  projector_.factor(as_span(projector_values_));
+  factor(projector_, projector_revision_, projector_values_);
 }
 
 void GeneralizedAlphaStepper::project_positions(double t, VecX& q, int max_iterations) {
@@ -158,6 +177,9 @@ void GeneralizedAlphaStepper::initialize(double t0, const VecX& q0, const VecX& 
   klu_base_[1] = klu_.refactorizations();
   klu_base_[2] = projector_.full_factorizations();
   klu_base_[3] = projector_.refactorizations();
+  klu_base_[4] = klu_.symbolic_analyses() + projector_.symbolic_analyses();
+  klu_seconds_base_[0] = klu_.factor_seconds() + projector_.factor_seconds();
+  klu_seconds_base_[1] = klu_.solve_seconds() + projector_.solve_seconds();
   ScopedTimer timer(stats_.wall_seconds);
   t_ = t0;
   t_base_ = t0;
@@ -175,10 +197,7 @@ void GeneralizedAlphaStepper::initialize(double t0, const VecX& q0, const VecX& 
   halvings_in_a_row_ = 0;
   stats_.min_step = h_;
   initialized_ = true;
-  stats_.full_factorizations =
-      klu_.full_factorizations() - klu_base_[0] + projector_.full_factorizations() - klu_base_[2];
-  stats_.factorizations = stats_.full_factorizations + klu_.refactorizations() - klu_base_[1] +
-                          projector_.refactorizations() - klu_base_[3];
+  update_factorization_counters();
 }
 
 void GeneralizedAlphaStepper::restart(double t, double h) {
@@ -259,10 +278,11 @@ void GeneralizedAlphaStepper::predict(double h) {
 }
 
 void GeneralizedAlphaStepper::refresh_matrix(double t1, double h) {
+  update_pattern(t1, q1_, v1_, h);
   problem_.iteration_matrix(t1, as_span(q1_), as_span(v1_), as_span(acc1_), as_span(lambda1_),
                             iteration_weights(h, options_.scaling), as_span(values_));
   ++stats_.matrix_evaluations;
-  klu_.factor(as_span(values_));
+  factor(klu_, klu_revision_, values_);
   matrix_h_ = h;
   matrix_age_ = 0;
   matrix_stale_ = false;
@@ -519,10 +539,19 @@ void GeneralizedAlphaStepper::step(double t_limit) {
     ++stats_.step_halvings;
     klu_.reset_pivoting();
   }
+  update_factorization_counters();
+}
+
+void GeneralizedAlphaStepper::update_factorization_counters() {
   stats_.full_factorizations =
       klu_.full_factorizations() - klu_base_[0] + projector_.full_factorizations() - klu_base_[2];
   stats_.factorizations = stats_.full_factorizations + klu_.refactorizations() - klu_base_[1] +
                           projector_.refactorizations() - klu_base_[3];
+  stats_.symbolic_analyses =
+      klu_.symbolic_analyses() + projector_.symbolic_analyses() - klu_base_[4];
+  stats_.factor_seconds =
+      klu_.factor_seconds() + projector_.factor_seconds() - klu_seconds_base_[0];
+  stats_.solve_seconds = klu_.solve_seconds() + projector_.solve_seconds() - klu_seconds_base_[1];
 }
 
 void GeneralizedAlphaStepper::advance_to(double t_end) {

@@ -60,6 +60,20 @@ T* check_pointer(T* p, const char* call) {
   return p;
 }
 
+using Clock = std::chrono::steady_clock;
+// Adds the wall time of a scope to a counter.
+class Stopwatch {
+ public:
+  explicit Stopwatch(double& seconds) : seconds_(seconds), start_(Clock::now()) {}
+  ~Stopwatch() { seconds_ += std::chrono::duration<double>(Clock::now() - start_).count(); }
+  Stopwatch(const Stopwatch&) = delete;
+  Stopwatch& operator=(const Stopwatch&) = delete;
+
+ private:
+  double& seconds_;
+  Clock::time_point start_;
+};
+
 std::span<double> view(N_Vector v) {
   return {N_VGetArrayPointer(v), static_cast<std::size_t>(N_VGetLength(v))};
 }
@@ -92,6 +106,8 @@ std::string IdaStatistics::table() const {
   row("root function evaluations", root_evaluations);
   row("KLU re-pivotings", klu_repivots);
   row("re-initializations", reinitializations);
+  row("pattern changes", pattern_changes);
+  row("symbolic analyses", symbolic_analyses);
   row("last order", last_order);
   row("last step [s]", fmt::format("{:.3e}", last_step));
   row("wall time [s]", fmt::format("{:.4f}", wall_time));
@@ -110,7 +126,10 @@ struct IdaIntegrator::Impl {
   double cj_pivoted = 0.0;      // c_j of the last factorization with fresh pivoting (0: none yet)
   IdaStatistics before_reinit;  // IDAReInit resets IDA's counters: the sums up to then
   long repivots = 0, reinitializations = 0;
+  long pattern_changes = 0,
+       symbolic_analyses = 1;  // KLU analyses: the first setup's and each ReInit
   double wall_time = 0.0;
+  double residual_seconds = 0.0, jacobian_seconds = 0.0;  // inside the callbacks
   std::exception_ptr fatal;      // a non-recoverable exception caught in a callback
   std::string message;           // IDA's last error message
   std::string callback_message;  // the last recoverable error raised in a callback
@@ -137,6 +156,7 @@ struct IdaIntegrator::Impl {
 
   static int residual_fn(realtype t, N_Vector y, N_Vector yp, N_Vector r, void* user) {
     auto& self = *static_cast<Impl*>(user);
+    const Stopwatch watch(self.residual_seconds);
     return self.guard([&] {
       const auto out = view(r);
       self.problem.residual(t, view(y), view(yp), out);
@@ -150,8 +170,22 @@ struct IdaIntegrator::Impl {
   static int jacobian_fn(realtype t, realtype cj, N_Vector y, N_Vector yp, N_Vector, SUNMatrix jac,
                          void* user, N_Vector, N_Vector, N_Vector) {
     auto& self = *static_cast<Impl*>(user);
+    const Stopwatch watch(self.jacobian_seconds);
     return self.guard([&] {
-      // SUNDIALS 6.4 zeroed the index arrays too: restore the fixed pattern first.
+      // The pattern may follow the state (contact pairs that are near, DESIGN §5), asked for a
+      // Jacobian that serves about one step: a change re-sizes the matrix and makes KLU's next
+      // setup re-run its symbolic analysis.
+      realtype h = 0.0;
+      check(IDAGetCurrentStep(self.mem.get(), &h), "IDAGetCurrentStep");
+      if (self.problem.update_jacobian_pattern(t, view(y), std::abs(h))) {
+        check(SUNLinSol_KLUReInit(self.klu.get(), jac, self.problem.jacobian_pattern().nonzeros(),
+                                  SUNKLU_REINIT_FULL),
+              "SUNLinSol_KLUReInit");
+        ++self.pattern_changes;
+        ++self.symbolic_analyses;
+        self.cj_pivoted = cj;
+      }
+      // SUNDIALS 6.4 zeroed the index arrays too: restore the pattern first.
       const SparsityPattern& p = self.problem.jacobian_pattern();
       std::copy(p.column_start().begin(), p.column_start().end(),
                 SUNSparseMatrix_IndexPointers(jac));
@@ -171,6 +205,7 @@ struct IdaIntegrator::Impl {
               "SUNLinSol_KLUReInit");
         self.cj_pivoted = cj;
         ++self.repivots;
+        ++self.symbolic_analyses;  // a partial ReInit frees the symbolic analysis as well
       }
       return true;
     });
@@ -415,6 +450,7 @@ void IdaIntegrator::reinitialize(double t, std::span<const double> y_new, bool p
           "IdaIntegrator::reinitialize: the new pattern must be frozen and of the same size");
     check(SUNLinSol_KLUReInit(s.klu.get(), s.jacobian.get(), p.nonzeros(), SUNKLU_REINIT_FULL),
           "SUNLinSol_KLUReInit");
+    ++s.symbolic_analyses;
   }
   const IdaStatistics so_far = statistics();
   check(IDAReInit(s.mem.get(), t, s.y.get(), s.yp.get()), "IDAReInit");
@@ -458,7 +494,11 @@ IdaStatistics IdaIntegrator::statistics() const {
     st.last_order = b.last_order, st.last_step = b.last_step;  // no step since
   st.klu_repivots = s.repivots;
   st.reinitializations = s.reinitializations;
+  st.pattern_changes = s.pattern_changes;
+  st.symbolic_analyses = s.symbolic_analyses;
   st.wall_time = s.wall_time;
+  st.residual_seconds = s.residual_seconds;
+  st.jacobian_seconds = s.jacobian_seconds;
   return st;
 }
 

@@ -29,25 +29,32 @@ bool is_length(const Model& model, Index i) {
 
 }  // namespace
 
-GglProblem::GglProblem(const Model& model, GglScales scales)
+GglProblem::GglProblem(const Model& model, GglScales scales, ContactPatternOptions contact)
     : model_(model),
       n_(model.coordinate_count()),
       m_(model.multiplier_count()),
       state_(SystemState::initial(model)),
-      workspace_(model) {
+      workspace_(model),
+      contact_(model, contact) {
   build_pattern();
   compute_scales(scales);
 }
 
-// Every entry of model.pattern() is copied to the GGL blocks it feeds (see the header's block
-// matrix); the slots are looked up once here, so jacobian() only adds through index arrays.
+bool GglProblem::update_jacobian_pattern(double t, std::span<const double> y, double horizon) {
+  state_.t = t;
+  state_.q = Eigen::Map<const VecX>(y.data(), n_);
+  state_.v = Eigen::Map<const VecX>(y.data() + n_, n_);
+  if (!contact_.update(state_, horizon, workspace_)) return false;
+  build_pattern();
+  return true;
+}
+
+// Every assembly slot of the contact pattern (the model's pattern entries, then the near
+// coupling entries) is copied to the GGL blocks it feeds (see the header's block matrix); the
+// slots are looked up once here, so jacobian() only adds through index arrays.
 void GglProblem::build_pattern() {
-  const SparsityPattern& p = model_.pattern();
-  const Index nnz = p.nonzeros(), n = n_, v0 = n_, l0 = 2 * n_, u0 = 2 * n_ + m_;
-  std::vector<Index> row(nnz), col(nnz);
-  for (Index c = 0; c < p.size(); ++c)
-    for (Index k = p.column_start()[c]; k < p.column_start()[c + 1]; ++k)
-      row[k] = p.row_index()[k], col[k] = c;
+  const Index nnz = contact_.slot_count(), n = n_, v0 = n_, l0 = 2 * n_, u0 = 2 * n_ + m_;
+  const std::span<const Index> row = contact_.slot_rows(), col = contact_.slot_columns();
   std::vector<char> geometric(nnz, 0);
   for (Index i = 0; i < m_; ++i)
     for (const Index s : model_.geometric_slots(i)) geometric[s] = 1;
@@ -220,7 +227,8 @@ void GglProblem::jacobian(double t, std::span<const double> y, std::span<const d
   std::fill(values.begin(), values.end(), 0.0);
   // Rows F_v (K, D + c_j M, Φ_qᵀ) and F_Φ (Φ_q): the model's iteration matrix, one pass.
   add_iteration_matrix(model_, state_, IterationWeights{1.0, 1.0, c_j, 1.0},
-                       MatrixScatter{position_slot_, velocity_slot_}, workspace_, values);
+                       MatrixScatter{position_slot_, velocity_slot_}, &contact_.coupling(),
+                       workspace_, values);
   for (Index i = 0; i < n_; ++i) {
     values[identity_q_slot_[i]] += c_j;
     values[identity_v_slot_[i]] -= 1.0;

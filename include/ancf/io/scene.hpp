@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "ancf/io/scene_error.hpp"
+#include "ancf/system/contact_pattern.hpp"
 #include "ancf/system/model.hpp"
 
 namespace ancf {
@@ -34,6 +35,9 @@ struct IntegratorSettings {
   bool perturbed_start = false;    ///< generalized-α starting procedure (ABC 2015)
   /// Generalized-α absolute Newton tolerances [m], [m/s], [N].
   double ga_atol_position = 1e-8, ga_atol_velocity = 1e-6, ga_atol_multiplier = 1e-6;
+  /// Contact coupling blocks in the iteration matrix: those of the pairs that are near (default)
+  /// or every candidate's (the first design, kept to measure against).
+  ContactPatternPolicy contact_pattern = ContactPatternPolicy::near;
 };
 
 /// One probe of the output time series (probes.csv columns, docs/scenes.md).

@@ -22,6 +22,7 @@
 
 #include "ancf/core/dae_problem.hpp"
 #include "ancf/system/assembly.hpp"
+#include "ancf/system/contact_pattern.hpp"
 
 namespace ancf {
 
@@ -43,10 +44,13 @@ class GglProblem final : public DaeProblem {
   /// Event functions g(state) (roots located by the integrator): the state has t, q, v, a = v', λ.
   using EventFunction = std::function<void(const SystemState& state, std::span<double> g)>;
 
-  explicit GglProblem(const Model& model, GglScales scales = {});
+  explicit GglProblem(const Model& model, GglScales scales = {},
+                      ContactPatternOptions contact = {});
 
   [[nodiscard]] Index size() const override { return 2 * n_ + 2 * m_; }
   [[nodiscard]] const SparsityPattern& jacobian_pattern() const override { return pattern_; }
+  /// ContactPattern::update at (t, q, v) of y; rebuilds the GGL pattern when it changed.
+  bool update_jacobian_pattern(double t, std::span<const double> y, double horizon) override;
   void residual(double t, std::span<const double> y, std::span<const double> yp,
                 std::span<double> r) override;
   void jacobian(double t, std::span<const double> y, std::span<const double> yp, double c_j,
@@ -72,6 +76,9 @@ class GglProblem final : public DaeProblem {
               SystemState& state) const;
   [[nodiscard]] const Model& model() const { return model_; }
   [[nodiscard]] const GglScales& scales() const { return scales_; }
+  [[nodiscard]] const ContactPattern& contact_pattern() const { return contact_; }
+  /// The scratch workspace, for its counters (contact samples, kernel times).
+  [[nodiscard]] const Workspace& workspace() const { return workspace_; }
   /// First index of each part of y.
   [[nodiscard]] Index velocity_offset() const { return n_; }
   [[nodiscard]] Index lambda_offset() const { return 2 * n_; }
@@ -85,7 +92,7 @@ class GglProblem final : public DaeProblem {
   Index n_, m_;
   GglScales scales_;
   SparsityPattern pattern_;
-  // Slot maps from model.pattern() entries into pattern_ (−1: none): the iteration-matrix parts
+  // Slot maps from assembly slots (contact_pattern.hpp) into pattern_ (−1: none): the iteration-matrix parts
   // (MatrixScatter), and the GGL-only copies of Φ_q (rows F_Ψ), Φ_qᵀ (rows F_q) and of the
   // geometric-stiffness positions (μ term in rows F_q).
   std::vector<Index> position_slot_, velocity_slot_;
@@ -95,6 +102,7 @@ class GglProblem final : public DaeProblem {
   std::vector<double> row_gradient_;  // g_i of the scale definition
   SystemState state_;
   Workspace workspace_;
+  ContactPattern contact_;
   int event_count_ = 0;
   EventFunction events_;
 };
