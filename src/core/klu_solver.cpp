@@ -89,6 +89,7 @@ void KluSolver::factor(std::span<const double> values) {
   k.numeric = klu_l_factor(ap, ai, ax, k.symbolic, &k.common);
   if (!k.numeric || k.common.status != KLU_OK) {
     pivots_valid_ = false;
+    singular_column_ = k.common.status == KLU_SINGULAR ? k.common.singular_col : -1;
     const std::string where =
         k.common.status == KLU_SINGULAR
             ? " (numerically singular at column " + std::to_string(k.common.singular_col) + ")"
@@ -97,6 +98,7 @@ void KluSolver::factor(std::span<const double> values) {
                       where);
   }
   pivots_valid_ = true;
+  singular_column_ = -1;
   ++full_factorizations_;
 }
 

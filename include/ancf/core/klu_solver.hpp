@@ -40,6 +40,8 @@ class KluSolver {
 
   [[nodiscard]] int full_factorizations() const { return full_factorizations_; }
   [[nodiscard]] int refactorizations() const { return refactorizations_; }
+  /// Column at which the last failed factorization found the matrix singular, or −1.
+  [[nodiscard]] Index singular_column() const { return singular_column_; }
   /// Symbolic analyses (the constructor's and every analyze()).
   [[nodiscard]] int symbolic_analyses() const { return symbolic_analyses_; }
   /// Wall time spent in analysis + numeric factorization, and in solves [s] (cumulative).
@@ -54,6 +56,7 @@ class KluSolver {
   int full_factorizations_ = 0;
   int refactorizations_ = 0;
   int symbolic_analyses_ = 0;
+  Index singular_column_ = -1;
   double factor_seconds_ = 0.0;
   double solve_seconds_ = 0.0;
 };
