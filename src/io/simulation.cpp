@@ -12,7 +12,9 @@ namespace {
 
 void run_ida(const Model& model, const IntegratorSettings& s, const std::vector<double>& times,
              const SimulationHooks& hooks, SimulationCounters& c, SimulationTimings& timings) {
-  GglProblem problem(model, {}, ContactPatternOptions{.policy = s.contact_pattern});
+  GglScales scales;
+  if (s.ida_slope_position_scale) scales.slope = SlopeScale::position_equivalent;
+  GglProblem problem(model, scales, ContactPatternOptions{.policy = s.contact_pattern});
   IdaOptions o;
   o.rtol = s.rtol;
   o.atol_position = s.ida_atol_position;

@@ -491,6 +491,14 @@ void IdaIntegrator::reinitialize(double t, std::span<const double> y_new, bool p
   t_ = t;
 }
 
+Index IdaIntegrator::worst_local_error(double& weighted) const {
+  Impl& s = *impl_;
+  weighted = 0.0;
+  Vector ele(check_pointer(N_VClone(s.y.get()), "N_VClone"));
+  if (IDAGetEstLocalErrors(s.mem.get(), ele.get()) != IDA_SUCCESS) return -1;
+  return s.worst(ele.get(), true, weighted);
+}
+
 IdaStatistics IdaIntegrator::statistics() const {
   const Impl& s = *impl_;
   void* mem = s.mem.get();

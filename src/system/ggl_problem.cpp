@@ -131,6 +131,19 @@ void GglProblem::compute_scales(GglScales given) {
 
   scale_.assign(size(), 1.0);
   for (Index i = 0; i < n_; ++i) scale_[i] = is_length(model_, i) ? big_l : 1.0;
+  if (given.slope == SlopeScale::position_equivalent) {
+    // A nodal slope enters the element's positions through S2, S4 with max|S2| = max|S4| = 4l/27
+    // (ξ = 1/3, 2/3): a slope error δ moves centreline points by at most (4l/27)δ, so the slope
+    // whose error moves them by L has the scale L/(4l/27), l the shorter adjacent element.
+    for (const CableData& c : model_.cables())
+      for (Index k = 0; k < c.node_count; ++k) {
+        const Index last = static_cast<Index>(c.elements.size()) - 1;
+        double l = c.elements[std::min(k, last)].length;
+        if (k > 0) l = std::min(l, c.elements[k - 1].length);
+        for (int d = 3; d < 6; ++d)
+          scale_[c.first_coordinate + 6 * k + d] = big_l / (4.0 * l / 27.0);
+      }
+  }
 
   // Energy: work of the constant loads over one scale of motion, initial kinetic and strain energy.
   double energy = kinetic_energy(model_, model_.initial_velocities()) + strain_energy(model_, q0);

@@ -30,6 +30,7 @@ struct IntegratorSettings {
   double max_step = 0.0;           ///< IDA step limit [s]; 0: none
   int max_order = 5;               ///< IDA BDF order limit, 1 … 5
   bool ida_sundials_klu = false;   ///< IDA: SUNDIALS' SUNLinSol_KLU instead of the project's
+  bool ida_slope_position_scale = false;  ///< IDA: SlopeScale::position_equivalent tolerances
   double step = 1e-3;              ///< generalized-α step size h [s] > 0
   double rho_infinity = 0.8;       ///< generalized-α spectral radius at infinity, [0, 1]
   bool stabilized_index2 = false;  ///< generalized-α formulation (false: index 3, needs ρ∞ < 1)

@@ -158,6 +158,10 @@ class IdaIntegrator {
   [[nodiscard]] std::span<const double> yp() const;
   [[nodiscard]] IdaStatistics statistics() const;
   [[nodiscard]] const IdaOptions& options() const { return options_; }
+  /// The differential unknown with the largest weighted local error estimate of the last step
+  /// (IDAGetEstLocalErrors × error weights, 1 = at the tolerance), and that value; −1 if none.
+  /// A diagnostic: which unknowns limit the step size (allocates).
+  [[nodiscard]] Index worst_local_error(double& weighted) const;
 
  private:
   struct Impl;

@@ -29,13 +29,24 @@ namespace ancf {
 /// Physical scales that set the absolute tolerances (DaeProblem::variable_scale). Zero entries
 /// are derived from the model: length L from the extent of the initial configuration, energy E
 /// from the constant loads over L, the initial kinetic and strain energy, velocity √(2E/m_total),
-/// time T = L/velocity. Coordinates get L (positions) or 1 (slopes, body axes), velocities those
-/// over T, a multiplier λ_i the force E/g_i and μ_i the rate s_i²/(T g_i), with g_i = ‖Φ_q,i S‖ the
-/// gradient of row i in scaled coordinates and s_i the largest coordinate scale in the row.
+/// time T = L/velocity. Coordinates get L (positions) or 1 (slopes, body axes; see SlopeScale),
+/// velocities those over T, a multiplier λ_i the force E/g_i and μ_i the rate s_i²/(T g_i), with
+/// g_i = ‖Φ_q,i S‖ the gradient of row i in scaled coordinates and s_i the largest coordinate scale
+/// in the row. Scale of a cable's nodal slope r' (and of its rate, over T).
+enum class SlopeScale {
+  unit,  ///< 1 (dimensionless): a slope error of rtol is allowed, whatever the element length
+  /// L/(4l/27): the slope error that moves centreline points as much as a position error of the
+  /// scale L (a slope enters positions through S2, S4, max |S2| = 4l/27). On slack ropes with
+  /// EI = 0 the end slopes carry no stiffness and wander; unit scales made their rates limit every
+  /// IDA step of the capture scene (ancf-study-ida-capture).
+  position_equivalent,
+};
+
 struct GglScales {
   double length = 0.0;  ///< L [m]
   double energy = 0.0;  ///< E [J]
   double time = 0.0;    ///< T [s]
+  SlopeScale slope = SlopeScale::unit;
 };
 
 /// Ownership: keeps a reference to `model`, which must outlive the problem.
@@ -92,9 +103,9 @@ class GglProblem final : public DaeProblem {
   Index n_, m_;
   GglScales scales_;
   SparsityPattern pattern_;
-  // Slot maps from assembly slots (contact_pattern.hpp) into pattern_ (−1: none): the iteration-matrix parts
-  // (MatrixScatter), and the GGL-only copies of Φ_q (rows F_Ψ), Φ_qᵀ (rows F_q) and of the
-  // geometric-stiffness positions (μ term in rows F_q).
+  // Slot maps from assembly slots (contact_pattern.hpp) into pattern_ (−1: none): the
+  // iteration-matrix parts (MatrixScatter), and the GGL-only copies of Φ_q (rows F_Ψ), Φ_qᵀ (rows
+  // F_q) and of the geometric-stiffness positions (μ term in rows F_q).
   std::vector<Index> position_slot_, velocity_slot_;
   std::vector<Index> psi_q_slot_, psi_v_slot_, mu_slot_, mu_geometric_slot_;
   std::vector<Index> identity_q_slot_, identity_v_slot_;  // (F_q, q) and (F_q, v) diagonals
