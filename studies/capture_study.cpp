@@ -33,6 +33,7 @@
 #include "ancf/io/scene.hpp"
 #include "ancf/io/simulation.hpp"
 #include "ancf/scenes/capture_events.hpp"
+#include "capture_mesh.hpp"
 
 using namespace ancf;
 
@@ -103,17 +104,7 @@ toml::table* find_named(toml::table& root, const char* array, const std::string&
 // The scene text with the command-line overrides applied (see the file comment).
 std::string apply_overrides(const Options& o) {
   toml::table root = toml::parse_file(o.scene);
-  if (o.elements > 0) {
-    for (toml::node& c : *root["cable"].as_array()) c.as_table()->insert_or_assign("elements", o.elements);
-    for (toml::node& c : *root["contact"].as_array()) {
-      toml::table& t = *c.as_table();
-      if (!t.contains("other_cable")) continue;
-      // The middle halves of both ropes, as in the scene file at 24 elements.
-      const toml::array range{static_cast<int64_t>(o.elements / 4), static_cast<int64_t>(o.elements / 2)};
-      t.insert_or_assign("elements", range);
-      t.insert_or_assign("other_elements", range);
-    }
-  }
+  if (o.elements > 0) studies::set_capture_rope_elements(root, o.elements);
   if (o.axial_damping >= 0.0 || o.bending_stiffness >= 0.0 || o.bending_damping >= 0.0 || o.mass_damping >= 0.0)
     for (toml::node& c : *root["cable"].as_array()) {
       toml::table& section = *c.as_table()->at("section").as_table();
