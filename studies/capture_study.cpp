@@ -4,9 +4,14 @@
 // Usage: ancf-capture [--scene studies/scenes/capture.toml] [--integrator genalpha|ida]
 //                     [--elements N] [--t-end T] [--omega-max DEG_PER_S] [--tilt DEG]
 //                     [--friction MU] [--regularization-speed V] [--step H] [--rtol R] [--rho-inf R] [--axial-damping C]
-//                     [--bending EI] [--bending-damping CB] [--mass-damping ALPHA] [--no-rope-rope] [--index2] [--free-pole] [--out DIR]
+//                     [--bending EI] [--bending-damping CB] [--mass-damping ALPHA] [--no-rope-rope] [--index2] [--free-pole]
+//                     [--contact-pattern near|all] [--set KEY=VALUE ...] [--out DIR]
 //                     [--error-control] [--error-rtol R] [--error-atol A] [--h-min H] [--h-max H]
 //                     [--step-change automatic|restart|rescale|rescale_with_velocity] [--refresh-on-contact] [--newton-damping N]
+// --set sets any key of the scene's [integrator] table by its dotted path below it, e.g.
+// --set genalpha.step=5e-4 or --set ida.max_order=2 (VALUE is a TOML value: number, "string", true).
+// `--contact-pattern all` reserves every candidate contact block (the first design) to measure against.
+// --error-control etc. set the [integrator.genalpha] keys of error-controlled stepping (docs/scenes.md).
 // Overrides change the scene's TOML before it is built (element counts, and the rope–rope
 // candidate ranges with them; drive ω_max; pole tilt; friction of every pair; rope damping and
 // bending, mass-proportional damping α [1/s]; rope–rope pairs off; integrator; generalized-α
@@ -32,6 +37,7 @@
 #include "ancf/io/scene.hpp"
 #include "ancf/io/simulation.hpp"
 #include "ancf/scenes/capture_events.hpp"
+#include "capture_mesh.hpp"
 
 using namespace ancf;
 
@@ -50,6 +56,8 @@ struct Options {
   double error_rtol = 0.0, error_atol = 0.0, h_min = 0.0, h_max = -1.0;
   std::string step_change;
   long newton_damping = -1;
+  std::string contact_pattern;                               // "" (scene's), "near" or "all"
+  std::vector<std::pair<std::string, std::string>> settings;  // --set KEY=VALUE under [integrator]
 };
 
 Options parse(int argc, char** argv) {
@@ -87,6 +95,13 @@ Options parse(int argc, char** argv) {
     else if (a == "--refresh-on-contact") o.refresh_on_contact = true;
     else if (a == "--newton-damping") o.newton_damping = std::stol(value());
     else if (a == "--out") o.out = value();
+    else if (a == "--contact-pattern") o.contact_pattern = value();
+    else if (a == "--set") {
+      const std::string kv = value();
+      const auto eq = kv.find('=');
+      if (eq == std::string::npos || eq == 0) throw std::invalid_argument("--set needs KEY=VALUE, got " + kv);
+      o.settings.emplace_back(kv.substr(0, eq), kv.substr(eq + 1));
+    }
     else throw std::invalid_argument("unknown option " + a);
   }
   if (o.integrator != "genalpha" && o.integrator != "ida")
@@ -105,17 +120,7 @@ toml::table* find_named(toml::table& root, const char* array, const std::string&
 // The scene text with the command-line overrides applied (see the file comment).
 std::string apply_overrides(const Options& o) {
   toml::table root = toml::parse_file(o.scene);
-  if (o.elements > 0) {
-    for (toml::node& c : *root["cable"].as_array()) c.as_table()->insert_or_assign("elements", o.elements);
-    for (toml::node& c : *root["contact"].as_array()) {
-      toml::table& t = *c.as_table();
-      if (!t.contains("other_cable")) continue;
-      // The middle halves of both ropes, as in the scene file at 24 elements.
-      const toml::array range{static_cast<int64_t>(o.elements / 4), static_cast<int64_t>(o.elements / 2)};
-      t.insert_or_assign("elements", range);
-      t.insert_or_assign("other_elements", range);
-    }
-  }
+  if (o.elements > 0) studies::set_capture_rope_elements(root, o.elements);
   if (o.axial_damping >= 0.0 || o.bending_stiffness >= 0.0 || o.bending_damping >= 0.0 || o.mass_damping >= 0.0)
     for (toml::node& c : *root["cable"].as_array()) {
       toml::table& section = *c.as_table()->at("section").as_table();
@@ -170,6 +175,21 @@ std::string apply_overrides(const Options& o) {
     const char* group = o.integrator == "ida" ? "ida" : "genalpha";
     if (!integrator.contains(group)) integrator.insert_or_assign(group, toml::table{});
     integrator.at(group).as_table()->insert_or_assign(o.integrator == "ida" ? "max_step" : "step", o.step);
+  }
+  if (!o.contact_pattern.empty()) integrator.insert_or_assign("contact_pattern", o.contact_pattern);
+  for (const auto& [key, text] : o.settings) {
+    // Walk the dotted path below [integrator], creating tables; the value is parsed as TOML.
+    toml::table* table = &integrator;
+    std::string path = key;
+    for (auto dot = path.find('.'); dot != std::string::npos; dot = path.find('.')) {
+      const std::string part = path.substr(0, dot);
+      if (!table->contains(part)) table->insert_or_assign(part, toml::table{});
+      table = table->at(part).as_table();
+      if (!table) throw std::invalid_argument("--set " + key + ": " + part + " is not a table");
+      path = path.substr(dot + 1);
+    }
+    toml::table parsed = toml::parse("v = " + text);
+    table->insert_or_assign(path, *parsed.get("v"));
   }
   std::ostringstream text;
   text << root;
@@ -235,11 +255,12 @@ int main(int argc, char** argv) {
   };
 
   SimulationCounters counters;
+  SimulationTimings timings;
   std::string status = "completed", message;
   const auto start = std::chrono::steady_clock::now();
   try {
     simulate(scene.model, scene.integrator, output_times(scene.output.interval, scene.integrator.t_end), hooks,
-             counters);
+             counters, timings);
   } catch (const std::exception& e) {
     status = "failed";
     message = e.what();
@@ -267,7 +288,8 @@ int main(int argc, char** argv) {
   write_snapshot("lock", ev.lock);
   if (!frames.empty()) write_snapshot("end", frames.back().t);
 
-  JsonObject events, opts, counts, meta;
+  JsonObject events, opts, counts, meta, times;
+  for (const auto& [name, value] : timings) times.set(name, value);
   for (int i = 0; i < 3; ++i) events.set(fmt::format("first_contact_rope_{}", i + 1), ev.first_contact[i]);
   events.set("first_rope", static_cast<long>(ev.first_rope + 1))
       .set("all_three", ev.all_three)
@@ -299,6 +321,7 @@ int main(int argc, char** argv) {
       .set("wall_time_s", wall)
       .set("options", opts)
       .set("counters", counts)
+      .set("time_s", times)
       .set("events", events);
   std::ofstream(o.out + "/events.json") << meta.text() << '\n';
 
@@ -306,5 +329,8 @@ int main(int argc, char** argv) {
              scene.model.cables()[0].elements.size(), o.free_pole ? ", free pole" : "", status, wall);
   fmt::print("{}", ev.table());
   for (const auto& [name, value] : counters) fmt::print("  {:<34} {}\n", name, value);
+  if (!timings.empty() && timings.front().second > 0.0)
+    for (std::size_t k = 1; k < timings.size(); ++k)
+      fmt::print("    {:<46} {:>6.1f} %\n", timings[k].first, 100.0 * timings[k].second / timings.front().second);
   return status == "completed" ? 0 : 2;
 }

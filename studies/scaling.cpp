@@ -15,6 +15,8 @@
 //                           [--ida-max-order K] [--min-seconds S] [--max-elements N]
 //                           [--integrator genalpha|ida|both] [--ida-model-scales]
 //                           [--elements 10,30,...] [--cables 1,2,...]
+//                           [--capture 12,24,48 [--capture-t-end T] [--capture-integrator
+//                            genalpha|ida|both] [--only-capture]]   (scaling_capture.hpp)
 // Writes DIR/scaling.csv, DIR/scaling_fits.csv and DIR/run.json (default DIR out/scaling).
 #include <fmt/format.h>
 
@@ -34,6 +36,7 @@
 #include "ancf/system/ggl_problem.hpp"
 #include "ancf/system/multibody_problem.hpp"
 #include "child_process.hpp"
+#include "scaling_capture.hpp"
 #include "scaling_scene.hpp"
 
 #ifndef ANCF_VERSION
@@ -66,6 +69,11 @@ struct Options {
   // case; with --ida-model-scales each model derives its own (see run_ida).
   bool ida_model_scales = false;
   ancf::GglScales ida_scales{};
+  // The capture scene at these rope meshes (scaling_capture.hpp); empty: not run.
+  std::vector<Index> capture_elements;
+  double capture_t_end = 2.0;
+  std::vector<std::string> capture_integrators = {"genalpha"};
+  bool only_capture = false;
 };
 
 enum class Integrator { genalpha, ida };
@@ -273,6 +281,16 @@ Options parse(int argc, char** argv) {
       o.cable_counts = parse_list(value());
     else if (arg == "--ida-model-scales")
       o.ida_model_scales = true;
+    else if (arg == "--capture")
+      o.capture_elements = parse_list(value());
+    else if (arg == "--capture-t-end")
+      o.capture_t_end = std::stod(value());
+    else if (arg == "--capture-integrator") {
+      const std::string v = value();
+      o.capture_integrators = v == "both" ? std::vector<std::string>{"genalpha", "ida"}
+                                          : std::vector<std::string>{v};
+    } else if (arg == "--only-capture")
+      o.only_capture = true;
     else if (arg == "--integrator") {
       const std::string v = value();
       o.genalpha = v == "genalpha" || v == "both";
@@ -284,7 +302,8 @@ Options parse(int argc, char** argv) {
           "; usage: ancf-study-scaling [--out DIR] [--steps N] "
           "[--ida-t-end T] [--ida-rtol R] [--ida-max-order K] "
           "[--min-seconds S] [--max-elements N] [--integrator genalpha|ida|both] "
-          "[--ida-model-scales] [--elements LIST] [--cables LIST]");
+          "[--ida-model-scales] [--elements LIST] [--cables LIST] [--capture LIST] "
+          "[--capture-t-end T] [--capture-integrator genalpha|ida|both] [--only-capture]");
   }
   return o;
 }
@@ -306,6 +325,14 @@ int main(int argc, char** argv) try {
     std::string sweep;
     Index elements, cables;
   };
+  if (!opt.capture_elements.empty()) {
+    const std::vector<long> counts(opt.capture_elements.begin(), opt.capture_elements.end());
+    if (!ancf::studies::capture_scaling(std::string(ANCF_SOURCE_DIR) + "/studies/scenes/capture.toml",
+                                        counts, opt.capture_integrators, opt.capture_t_end,
+                                        opt.out))
+      return 2;
+    if (opt.only_capture) return 0;
+  }
   std::vector<Plan> plan;
   for (const Index n : opt.element_counts)
     if (n <= opt.max_elements) plan.push_back({"elements", n, 1});

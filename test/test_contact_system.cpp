@@ -1,6 +1,6 @@
 // Contact in the assembled system (DESIGN §5): the assembled iteration matrix of a scene with every
-// pair kind in contact against finite differences of the assembled residual, the reserved pattern
-// and the broad phase, the outputs, and the physical checks of the contact issue: capstan law
+// pair kind in contact against finite differences of the assembled residual, the contact pattern
+// of the near pairs (entering and leaving, hysteresis) and the broad phase, the outputs, and the physical checks of the contact issue: capstan law
 // (REFERENCES §6), a cable dropped on a plane coming to rest at the static penalty depth, linear
 // momentum in a frictionless cable–cable impact, and IDA against generalized-α on one scene.
 #include <gtest/gtest.h>
@@ -20,6 +20,7 @@
 #include "ancf/solvers/static_solver.hpp"
 #include "ancf/system/assembly.hpp"
 #include "ancf/system/contact_output.hpp"
+#include "ancf/system/contact_pattern.hpp"
 #include "ancf/system/ggl_problem.hpp"
 #include "ancf/system/model_builder.hpp"
 #include "ancf/system/multibody_problem.hpp"
@@ -127,19 +128,22 @@ TEST(ContactAssembly, EveryPairKindIsInContactInTheTestScene) {
   }
 }
 
-// ∂R/∂q, ∂R/∂v (and ∂R/∂a, ∂R/∂λ unchanged) with contact, through the model's own pattern.
+// ∂R/∂q, ∂R/∂v (and ∂R/∂a, ∂R/∂λ unchanged) with contact, through the contact pattern updated
+// at the state (the near coupling blocks).
 TEST(ContactAssembly, IterationMatrixEqualsFiniteDifferencesOfTheResidual) {
   const Model model = contact_assembly_scene();
   Workspace ws(model);
+  ContactPattern contact(model);
   const Index n = model.coordinate_count(), m = model.multiplier_count(),
               size = model.system_size();
-  VecX values(model.pattern().nonzeros());
   for (unsigned seed : {3u, 4u}) {
     const SystemState s0 = perturbed_state(model, seed);
+    contact.update(s0, 0.0, ws);
+    VecX values(contact.pattern().nonzeros());
     for (int which = 0; which < 2; ++which) {
       const IterationWeights w{which == 0 ? 1.0 : 0.0, which == 1 ? 1.0 : 0.0, 0.0};
-      assemble_iteration_matrix(model, s0, w, ws, as_span(values));
-      MatX j = dense(model.pattern(), values);
+      assemble_iteration_matrix(model, s0, w, contact, ws, as_span(values));
+      MatX j = dense(contact.pattern(), values);
       if (which == 1) j.bottomRows(m).setZero();
       VecX y(size);
       y << (which == 0 ? s0.q : s0.v), s0.lambda;
@@ -180,6 +184,7 @@ TEST(ContactAssembly, GglJacobianEqualsFiniteDifferences) {
   }
   for (Index i = 2 * n; i < size; ++i) y[i] = (i < ggl.mu_offset() ? 5.0 : 0.3) * u(rng);
   const double t = 0.37, c_j = 250.0;
+  EXPECT_TRUE(ggl.update_jacobian_pattern(t, as_span(y), 0.0));  // the near blocks enter
   const SparsityPattern& p = ggl.jacobian_pattern();
   VecX values(p.nonzeros());
   ggl.jacobian(t, as_span(y), as_span(yp), c_j, as_span(values));
@@ -198,15 +203,12 @@ TEST(ContactAssembly, GglJacobianEqualsFiniteDifferences) {
                       << ": analytic " << r.analytic << ", FD " << r.fd;
 }
 
-// Far apart (cable b and every shape shifted by 10 m), the broad phase skips all narrow-phase work:
-// the residual and the matrix equal those of the same scene with the pairs not touching, to the
-// bit, and the pattern (reserved blocks) is identical to the touching scene's.
-TEST(ContactAssembly, PatternIsReservedAndFarPairsContributeNothing) {
+// Far apart (cable b and every shape shifted by 10 m), the broad phase skips all narrow-phase work
+// and the contact pattern holds no coupling block: it is the model's own pattern, which the
+// matrix then fills in place.
+TEST(ContactAssembly, FarPairsContributeNothingAndHoldNoBlocks) {
   const Model near = contact_assembly_scene();
   const Model far = contact_assembly_scene(Vec3(10.0, 0.0, 0.0));
-  EXPECT_EQ(near.pattern().nonzeros(), far.pattern().nonzeros());
-  EXPECT_TRUE(std::equal(near.pattern().row_index().begin(), near.pattern().row_index().end(),
-                         far.pattern().row_index().begin()));
   Workspace ws(far);
   std::vector<ContactPairState> states(far.contact_pair_count());
   SystemState s = SystemState::initial(far);
@@ -215,20 +217,158 @@ TEST(ContactAssembly, PatternIsReservedAndFarPairsContributeNothing) {
     EXPECT_FALSE(st.active);
     EXPECT_GT(st.min_gap, 1.0);  // exact minimum gap even far apart
   }
-  // No sample reaches a narrow-phase kernel, and the coupling blocks stay exactly zero.
+  ContactPattern contact(far);
+  EXPECT_FALSE(contact.update(s, 1e-3, ws));
+  EXPECT_EQ(contact.statistics().near_blocks, 0);
+  EXPECT_TRUE(contact.identity());
+  EXPECT_EQ(contact.pattern().nonzeros(), far.pattern().nonzeros());
+  // No sample reaches a narrow-phase kernel.
   ws.narrow_phase_samples = 0;
-  VecX values(far.pattern().nonzeros()), r(far.system_size());
+  VecX values(contact.pattern().nonzeros()), r(far.system_size());
   assemble_residual(far, s, 1.0, ws, as_span(r));
-  assemble_iteration_matrix(far, s, IterationWeights{1.0, 10.0, 0.0}, ws, as_span(values));
+  assemble_iteration_matrix(far, s, IterationWeights{1.0, 10.0, 0.0}, contact, ws, as_span(values));
   EXPECT_EQ(ws.narrow_phase_samples, 0);
   Workspace ws_near(near);
   assemble_residual(near, SystemState::initial(near), 1.0, ws_near, as_span(r));
   std::printf("  narrow-phase samples per residual: far %ld, near %ld\n", ws.narrow_phase_samples,
               ws_near.narrow_phase_samples);
   EXPECT_GT(ws_near.narrow_phase_samples, 0);
-  const auto& c = far.cable_cable_contacts()[0];
-  for (const auto& block : c.ab)
-    for (const Index slot : block) EXPECT_EQ(values[slot], 0.0);
+  // In contact, the model's own pattern cannot hold the coupling blocks: the plain overload
+  // refuses instead of returning a partial matrix.
+  VecX plain(near.pattern().nonzeros());
+  EXPECT_THROW(assemble_iteration_matrix(near, perturbed_state(near, 3),
+                                         IterationWeights{1.0, 0.0, 0.0}, ws_near, as_span(plain)),
+               std::logic_error);
+}
+
+// The state of the test scene with cable b and the drum lifted by dz (the floor contact of cable a
+// and the spinner's ball stay): the b–a and a–drum pairs open as dz grows.
+SystemState lifted(const Model& model, const SystemState& base, double dz) {
+  SystemState s = base;
+  const CableData& b = model.cables()[1];
+  for (Index k = 0; k < b.node_count; ++k) s.q[b.first_coordinate + 6 * k + 2] += dz;
+  s.q[model.bodies()[0].first_coordinate + 2] += dz;
+  return s;
+}
+
+// FD check of the multibody problem's iteration matrix (its own pattern) at state s.
+fdcheck::Result check_problem_matrix(MultibodyProblem& problem, const SystemState& s0) {
+  const Model& model = problem.model();
+  const Index n = model.coordinate_count(), m = model.multiplier_count(), size = n + m;
+  VecX values(problem.iteration_pattern().nonzeros());
+  problem.iteration_matrix(s0.t, as_span(s0.q), as_span(s0.v), as_span(s0.a),
+                           as_span(s0.lambda), MatrixWeights{1.0, 0.0, 0.0}, as_span(values));
+  const MatX j = dense(problem.iteration_pattern(), values);
+  VecX y(size);
+  y << s0.q, s0.lambda;
+  const fdcheck::Function residual = [&](const VecX& x) {
+    VecX r(size);
+    problem.residual(s0.t, std::span<const double>(x.data(), n), as_span(s0.v), as_span(s0.a),
+                     std::span<const double>(x.data() + n, m), as_span(r));
+    return r;
+  };
+  return fdcheck::check_jacobian(residual, y, j);
+}
+
+// The near set follows the motion: lowering cable b and the drum from far above onto cable a, the
+// coupling blocks enter (the pattern changes only then), and after the path the matrix, whose
+// pattern grew step by step, equals finite differences of the residual; lifting them again, the
+// blocks leave only beyond the larger leave margin (hysteresis), with the drum still in contact
+// when b has left and the matrix still exact. Going back and forth between the two margins changes
+// nothing.
+TEST(ContactPattern, NearSetFollowsTheMotionWithHysteresisAndTheMatrixStaysExact) {
+  const Model model = contact_assembly_scene();
+  MultibodyProblem problem(model);
+  const SystemState base = perturbed_state(model, 3);
+  auto update = [&](double dz) {
+    const SystemState s = lifted(model, base, dz);
+    return problem.update_pattern(s.t, as_span(s.q), as_span(s.v), 0.0);
+  };
+  const double step = 0.002;
+  double entered = -1.0;
+  int changes = 0;
+  for (double dz = 0.3; dz >= 0.0; dz -= step)
+    if (update(dz)) {
+      ++changes;
+      if (entered < 0.0) entered = dz;
+    }
+  update(0.0);
+  const Index all_near = problem.contact_pattern().statistics().near_blocks;
+  std::printf("  lowering: %d pattern changes, first block entered at dz = %.3f m, %ld blocks\n",
+              changes, entered, static_cast<long>(all_near));
+  EXPECT_GT(entered, 0.0);
+  EXPECT_GT(all_near, 0);
+  EXPECT_GT(problem.iteration_pattern().nonzeros(), model.pattern().nonzeros());
+  const fdcheck::Result at_contact = check_problem_matrix(problem, base);
+  std::printf("  in contact after the path: worst error/tolerance %.3f\n", at_contact.max_ratio);
+  EXPECT_TRUE(at_contact.ok()) << model.describe_row(at_contact.row) << " / "
+                               << model.describe_row(at_contact.col);
+  // Lifting: the last block leaves at a larger dz than the first entered.
+  double left = -1.0;
+  for (double dz = 0.0; dz <= 0.3; dz += step)
+    if (update(dz) && problem.contact_pattern().statistics().near_blocks == 0) {
+      left = dz;
+      break;
+    }
+  std::printf("  lifting: all blocks left at dz = %.3f m (entered at %.3f m)\n", left, entered);
+  EXPECT_GT(left, entered + step);
+  // No flicker: jiggling by ±1 mm about one position changes the pattern at most on the first
+  // moves (a block whose enter margin lies in the band enters once and then stays).
+  const double middle = 0.5 * (entered + left);
+  for (int k = 0; k < 2; ++k) update(middle + (k % 2 ? 1e-3 : -1e-3));
+  const long before = problem.contact_pattern().statistics().rebuilds;
+  for (int k = 0; k < 10; ++k) update(middle + (k % 2 ? 1e-3 : -1e-3));
+  EXPECT_EQ(problem.contact_pattern().statistics().rebuilds, before);
+  // Cable b lifted alone: its blocks leave, the drum's stay, the matrix stays exact.
+  SystemState b_up = base;
+  const CableData& b = model.cables()[1];
+  for (Index k = 0; k < b.node_count; ++k) b_up.q[b.first_coordinate + 6 * k + 2] += 0.3;
+  EXPECT_TRUE(problem.update_pattern(b_up.t, as_span(b_up.q), as_span(b_up.v), 0.0));
+  const Index drum_only = problem.contact_pattern().statistics().near_blocks;
+  EXPECT_GT(drum_only, 0);
+  EXPECT_LT(drum_only, all_near);
+  const fdcheck::Result after_leave = check_problem_matrix(problem, b_up);
+  std::printf("  after b left: %ld blocks, worst error/tolerance %.3f\n",
+              static_cast<long>(drum_only), after_leave.max_ratio);
+  EXPECT_TRUE(after_leave.ok()) << model.describe_row(after_leave.row) << " / "
+                                << model.describe_row(after_leave.col);
+  EXPECT_EQ(problem.workspace().missing_coupling_samples, 0);
+}
+
+// The first design, every candidate block reserved, gives the same matrix entry for entry (the
+// same terms added in the same order), in a pattern that never changes; and the look-ahead margin
+// makes moving pairs enter earlier.
+TEST(ContactPattern, ReservingEveryCandidateGivesTheSameMatrix) {
+  const Model model = contact_assembly_scene();
+  MultibodyProblem near(model), all(model, {.policy = ContactPatternPolicy::all});
+  const SystemState s = perturbed_state(model, 4);
+  EXPECT_TRUE(near.update_pattern(s.t, as_span(s.q), as_span(s.v), 0.0));
+  EXPECT_FALSE(all.update_pattern(s.t, as_span(s.q), as_span(s.v), 0.0));
+  EXPECT_GT(all.iteration_pattern().nonzeros(), near.iteration_pattern().nonzeros());
+  VecX vn(near.iteration_pattern().nonzeros()), va(all.iteration_pattern().nonzeros());
+  const MatrixWeights w{1.0, 3.0, 50.0};
+  near.iteration_matrix(s.t, as_span(s.q), as_span(s.v), as_span(s.a), as_span(s.lambda), w,
+                        as_span(vn));
+  all.iteration_matrix(s.t, as_span(s.q), as_span(s.v), as_span(s.a), as_span(s.lambda), w,
+                       as_span(va));
+  EXPECT_EQ((dense(near.iteration_pattern(), vn) - dense(all.iteration_pattern(), va))
+                .cwiseAbs()
+                .maxCoeff(),
+            0.0);
+  // Cable b 5 cm above its contact position, at rest: not near at horizon 0; falling at 10 m/s,
+  // near for a horizon of 5 ms (it closes 0.1 m in look_ahead × 5 ms).
+  SystemState high = lifted(model, s, 0.05);
+  MultibodyProblem resting(model), falling(model);
+  const CableData& b = model.cables()[1];
+  resting.update_pattern(high.t, as_span(high.q), as_span(high.v), 5e-3);
+  const Index blocks_at_rest = resting.contact_pattern().statistics().near_blocks;
+  for (Index k = 0; k < b.node_count; ++k) high.v[b.first_coordinate + 6 * k + 2] = -10.0;
+  for (Index k = 0; k < b.node_count; ++k) high.v.segment<3>(b.first_coordinate + 6 * k + 3).setZero();
+  falling.update_pattern(high.t, as_span(high.q), as_span(high.v), 5e-3);
+  std::printf("  5 cm above: %ld blocks at rest, %ld falling at 10 m/s\n",
+              static_cast<long>(blocks_at_rest),
+              static_cast<long>(falling.contact_pattern().statistics().near_blocks));
+  EXPECT_GT(falling.contact_pattern().statistics().near_blocks, blocks_at_rest);
 }
 
 // Outputs: the resultant equals the sum of the contact rows of the residual (translation parts)

@@ -114,9 +114,13 @@ TEST(IdaRigidPendulum, PeriodEnergyConstraintsAndMu) {
 }
 
 // ---- Gerstmayr–Shabana pendulum (REFERENCES §7), undamped ------------------------------------
-// f = 5, 8 elements, 0.5 s. The energy error must decrease monotonically as rtol goes from 1e-3
-// to 1e-6 and be below rtol·E₀ at the tightest. The pin is linear in q, so Φ_q q' = Φ_q v exactly
-// and μ is zero to round-off (exactly, here).
+// f = 5, 8 elements, 0.5 s. The energy error must decrease over every factor 100 in rtol (1e-3 →
+// 1e-5, 1e-4 → 1e-6), stay within 10·rtol·E₀ and be below 1e-6·E₀ at the tightest. Over a factor
+// 10 it need not decrease: at rtol 1e-4 the maximum error is set by where the step sequence falls
+// and moves with round-off — 5.2e-6, 2.2e-6 and 3.3e-7 J with the project's KLU (AMD ordering),
+// SUNDIALS' KLU, and the project's with COLAMD ordering, against 5.1e-6 J at rtol 1e-3 in all
+// three. The pin is linear in q, so Φ_q q' = Φ_q v exactly and μ is zero to round-off (exactly,
+// here).
 TEST(IdaGerstmayrShabana, EnergyErrorShrinksWithRtol) {
   const Model model = cable_pendulum_model(gerstmayr_shabana_pendulum(5.0, 8));
   std::vector<double> drift;
@@ -133,8 +137,11 @@ TEST(IdaGerstmayrShabana, EnergyErrorShrinksWithRtol) {
     drift.push_back(e.drift);
     EXPECT_EQ(e.mu, 0.0);
   }
-  for (std::size_t k = 1; k < drift.size(); ++k)
-    EXPECT_LT(drift[k], drift[k - 1]) << "rtol index " << k;
+  const double rtols[] = {1e-3, 1e-4, 1e-5, 1e-6};
+  for (std::size_t k = 0; k < drift.size(); ++k)
+    EXPECT_LT(drift[k], 10.0 * rtols[k] * std::abs(e0)) << "rtol " << rtols[k];
+  for (std::size_t k = 2; k < drift.size(); ++k)
+    EXPECT_LT(drift[k], drift[k - 2]) << "rtol " << rtols[k] << " against " << rtols[k - 2];
   EXPECT_LT(drift.back(), 1e-6 * std::abs(e0));
 }
 

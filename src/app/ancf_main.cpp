@@ -20,6 +20,9 @@ int main(int argc, char** argv) {
   run->add_option("--integrator", run_options.integrator, "override [integrator] method")
       ->check(CLI::IsMember({"ida", "genalpha"}));
   run->add_option("--rtol", run_options.rtol, "relative tolerance")->check(CLI::PositiveNumber);
+  run->add_option("--contact-pattern", run_options.contact_pattern,
+                  "contact coupling blocks: near (default) or all candidates (the first design)")
+      ->check(CLI::IsMember({"near", "all"}));
   run->add_option("--step", run_options.step, "generalized-alpha step / IDA max step [s]")
       ->check(CLI::PositiveNumber);
   run->add_option("--t-end", run_options.t_end, "end time [s]")->check(CLI::PositiveNumber);

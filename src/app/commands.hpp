@@ -18,6 +18,7 @@ struct RunOptions {
   double rtol = 0.0;       ///< 0: scene's
   double step = 0.0;       ///< 0: scene's (genalpha step; IDA max step)
   double t_end = 0.0;      ///< 0: scene's
+  std::string contact_pattern;  ///< "" (scene's), "near" or "all"
   std::string out_dir = "out";
   bool progress = false;  ///< force the progress bar even when stderr is not a terminal
   bool quiet = false;     ///< no summary table

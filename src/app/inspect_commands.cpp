@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "ancf/io/scene.hpp"
+#include "ancf/system/contact_pattern.hpp"
 #include "commands.hpp"
 
 namespace ancf::app {
@@ -29,7 +30,18 @@ int info_command(const std::string& scene_path) {
     fmt::print("multipliers  {} (constraint rows)\n", m.multiplier_count());
     fmt::print("system size  {} (IDA/GGL: {})\n", m.system_size(),
                2 * m.coordinate_count() + 2 * m.multiplier_count());
-    fmt::print("nonzeros     {} in the iteration-matrix pattern\n", m.pattern().nonzeros());
+    const ContactPattern every(m, {.policy = ContactPatternPolicy::all});
+    const double dense =
+        static_cast<double>(m.system_size()) * static_cast<double>(m.system_size());
+    fmt::print(
+        "nonzeros     {} in the iteration-matrix pattern without contact coupling ({:.2g} %)\n",
+        m.pattern().nonzeros(), 100.0 * static_cast<double>(m.pattern().nonzeros()) / dense);
+    if (every.pattern().nonzeros() > m.pattern().nonzeros())
+      fmt::print(
+          "             {} with every candidate contact block ({:.2g} %; contact_pattern = "
+          "\"all\"); the default holds only the pairs that are near\n",
+          every.pattern().nonzeros(),
+          100.0 * static_cast<double>(every.pattern().nonzeros()) / dense);
     fmt::print("cables       {}\n", m.cables().size());
     for (const CableData& c : m.cables())
       fmt::print(

@@ -31,6 +31,8 @@ void apply_overrides(const RunOptions& o, IntegratorSettings& s) {
   if (o.rtol > 0.0) s.rtol = o.rtol;
   if (o.t_end > 0.0) s.t_end = o.t_end;
   if (o.step > 0.0) (s.kind == IntegratorKind::ida ? s.max_step : s.step) = o.step;
+  if (o.contact_pattern == "near") s.contact_pattern = ContactPatternPolicy::near;
+  if (o.contact_pattern == "all") s.contact_pattern = ContactPatternPolicy::all;
 }
 
 std::string read_file(const std::string& path) {
@@ -60,6 +62,7 @@ int run_command(const RunOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   std::string status = "completed", message;
   Counters counters;
+  SimulationTimings timings;
   std::optional<RunOutputs> out;
   try {
     out.emplace(scene, options.out_dir);
@@ -68,7 +71,8 @@ int run_command(const RunOptions& options) {
       SimulationHooks hooks;
       hooks.output = [&](const SystemState& state) { out->record(state); };
       hooks.progress = [&](double t) { bar.update(t); };
-      simulate(scene.model, s, output_times(scene.output.interval, s.t_end), hooks, counters);
+      simulate(scene.model, s, output_times(scene.output.interval, s.t_end), hooks, counters,
+               timings);
     } catch (...) {
       bar.finish();
       throw;
@@ -85,8 +89,9 @@ int run_command(const RunOptions& options) {
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  JsonObject opts, counts, results, meta;
+  JsonObject opts, counts, results, meta, times;
   opts.set("integrator", ida ? "ida" : "genalpha").set("rtol", s.rtol).set("t_end", s.t_end);
+  opts.set("contact_pattern", s.contact_pattern == ContactPatternPolicy::all ? "all" : "near");
   if (ida)
     opts.set("max_step", s.max_step).set("max_order", static_cast<long>(s.max_order));
   else
@@ -95,6 +100,7 @@ int run_command(const RunOptions& options) {
         .set("formulation", s.stabilized_index2 ? "stabilized_index2" : "index3");
   opts.set("output_interval", scene.output.interval).set("out", options.out_dir);
   for (const auto& [name, value] : counters) counts.set(name, value);
+  for (const auto& [name, value] : timings) times.set(name, value);
   if (out)
     results.set("frames", out->frames())
         .set("t_reached", out->last_time())
@@ -112,6 +118,7 @@ int run_command(const RunOptions& options) {
       .set("wall_time_s", wall)
       .set("options", opts)
       .set("counters", counts)
+      .set("time_s", times)
       .set("results", results);
   if (out) std::ofstream(options.out_dir + "/run.json") << meta.text() << '\n';
 
@@ -121,6 +128,11 @@ int run_command(const RunOptions& options) {
                options.out_dir);
     for (const auto& [name, value] : counters) fmt::print("  {:<28} {:>12}\n", name, value);
     fmt::print("  {:<28} {:>12.4f}\n", "wall time [s]", wall);
+    // Shares of the integrator's wall time (the first timing).
+    if (!timings.empty() && timings.front().second > 0.0)
+      for (std::size_t k = 1; k < timings.size(); ++k)
+        fmt::print("    {:<44} {:>6.1f} %\n", timings[k].first,
+                   100.0 * timings[k].second / timings.front().second);
     fmt::print("  {:<28} {:>12.4e}\n", "energy E(0) [J]", out->initial_energy());
     fmt::print("  {:<28} {:>12.4e}\n", "max |E - E(0)| [J]", out->max_energy_change());
     fmt::print("  {:<28} {:>12.4e}\n", "max |Phi|", out->max_position_violation());

@@ -2,6 +2,7 @@
 
 #include <klu.h>
 
+#include <chrono>
 #include <string>
 
 #include "ancf/core/error.hpp"
@@ -21,22 +22,46 @@ struct KluSolver::Impl {
 };
 
 namespace {
+using Clock = std::chrono::steady_clock;
+// Adds the wall time of a scope to a counter (also when it is left by an exception).
+class Stopwatch {
+ public:
+  explicit Stopwatch(double& seconds) : seconds_(seconds), start_(Clock::now()) {}
+  ~Stopwatch() { seconds_ += std::chrono::duration<double>(Clock::now() - start_).count(); }
+  Stopwatch(const Stopwatch&) = delete;
+  Stopwatch& operator=(const Stopwatch&) = delete;
+
+ private:
+  double& seconds_;
+  Clock::time_point start_;
+};
+
 // KLU's C interface takes non-const pointers but does not modify the pattern arrays.
 SuiteSparse_long* mutable_ptr(const std::vector<Index>& v) {
   return const_cast<SuiteSparse_long*>(reinterpret_cast<const SuiteSparse_long*>(v.data()));
 }
 }  // namespace
 
-KluSolver::KluSolver(const SparsityPattern& pattern) : impl_(std::make_unique<Impl>()), pattern_(pattern) {
-  if (!pattern.frozen()) throw std::logic_error("KluSolver: pattern must be frozen");
+KluSolver::KluSolver(const SparsityPattern& pattern)
+    : impl_(std::make_unique<Impl>()), pattern_(pattern) {
   klu_l_defaults(&impl_->common);
-  impl_->symbolic = klu_l_analyze(pattern.size(), mutable_ptr(pattern.column_start()),
-                                  mutable_ptr(pattern.row_index()), &impl_->common);
-  if (!impl_->symbolic) {
-    throw SolverError("KLU symbolic analysis failed (status " +
-                      std::to_string(impl_->common.status) + ") for a matrix of size " +
-                      std::to_string(pattern.size()));
+  analyze();
+}
+
+void KluSolver::analyze() {
+  if (!pattern_.frozen()) throw std::logic_error("KluSolver: pattern must be frozen");
+  Stopwatch watch(factor_seconds_);
+  Impl& k = *impl_;
+  if (k.numeric) klu_l_free_numeric(&k.numeric, &k.common);
+  if (k.symbolic) klu_l_free_symbolic(&k.symbolic, &k.common);
+  pivots_valid_ = false;
+  k.symbolic = klu_l_analyze(pattern_.size(), mutable_ptr(pattern_.column_start()),
+                             mutable_ptr(pattern_.row_index()), &k.common);
+  if (!k.symbolic) {
+    throw SolverError("KLU symbolic analysis failed (status " + std::to_string(k.common.status) +
+                      ") for a matrix of size " + std::to_string(pattern_.size()));
   }
+  ++symbolic_analyses_;
 }
 
 KluSolver::~KluSolver() = default;
@@ -45,6 +70,7 @@ void KluSolver::factor(std::span<const double> values) {
   if (static_cast<Index>(values.size()) != pattern_.nonzeros()) {
     throw std::invalid_argument("KluSolver::factor: value count does not match the pattern");
   }
+  Stopwatch watch(factor_seconds_);
   auto* ap = mutable_ptr(pattern_.column_start());
   auto* ai = mutable_ptr(pattern_.row_index());
   auto* ax = const_cast<double*>(values.data());
@@ -63,18 +89,21 @@ void KluSolver::factor(std::span<const double> values) {
   k.numeric = klu_l_factor(ap, ai, ax, k.symbolic, &k.common);
   if (!k.numeric || k.common.status != KLU_OK) {
     pivots_valid_ = false;
-    const std::string where = k.common.status == KLU_SINGULAR
-                                  ? " (numerically singular at column " +
-                                        std::to_string(k.common.singular_col) + ")"
-                                  : "";
+    singular_column_ = k.common.status == KLU_SINGULAR ? k.common.singular_col : -1;
+    const std::string where =
+        k.common.status == KLU_SINGULAR
+            ? " (numerically singular at column " + std::to_string(k.common.singular_col) + ")"
+            : "";
     throw SolverError("KLU factorization failed, status " + std::to_string(k.common.status) +
                       where);
   }
   pivots_valid_ = true;
+  singular_column_ = -1;
   ++full_factorizations_;
 }
 
 void KluSolver::solve(std::span<double> rhs) {
+  Stopwatch watch(solve_seconds_);
   Impl& k = *impl_;
   if (!k.numeric) throw std::logic_error("KluSolver::solve before a successful factor()");
   if (static_cast<Index>(rhs.size()) != pattern_.size()) {

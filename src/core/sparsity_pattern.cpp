@@ -37,17 +37,22 @@ void SparsityPattern::freeze() {
   frozen_ = true;
 }
 
-Index SparsityPattern::slot(Index row, Index col) const {
-  if (!frozen_) throw std::logic_error("SparsityPattern::slot before freeze()");
-  if (col < 0 || col >= n_) throw std::out_of_range("SparsityPattern::slot: column out of range");
+Index SparsityPattern::find(Index row, Index col) const {
+  if (!frozen_) throw std::logic_error("SparsityPattern::find before freeze()");
+  if (col < 0 || col >= n_) throw std::out_of_range("SparsityPattern::find: column out of range");
   const auto first = row_index_.begin() + column_start_[col];
   const auto last = row_index_.begin() + column_start_[col + 1];
   const auto it = std::lower_bound(first, last, row);
-  if (it == last || *it != row) {
+  return it == last || *it != row ? -1 : static_cast<Index>(it - row_index_.begin());
+}
+
+Index SparsityPattern::slot(Index row, Index col) const {
+  const Index s = find(row, col);
+  if (s < 0) {
     throw std::out_of_range("SparsityPattern::slot: entry (" + std::to_string(row) + ", " +
                             std::to_string(col) + ") is not in the pattern");
   }
-  return static_cast<Index>(it - row_index_.begin());
+  return s;
 }
 
 }  // namespace ancf

@@ -12,6 +12,9 @@ IntegratorSettings read_integrator(TableReader& root) {
                                                                    : IntegratorKind::genalpha;
   s.t_end = t.number_or("t_end", s.t_end, Range::positive);
   s.rtol = t.number_or("rtol", s.rtol, Range::positive);
+  s.contact_pattern = t.choice("contact_pattern", {"near", "all"}, "near") == "all"
+                          ? ContactPatternPolicy::all
+                          : ContactPatternPolicy::near;
   if (auto ida = t.optional_table("ida")) {
     s.ida_atol_position = ida->number_or("atol_position", s.ida_atol_position, Range::positive);
     s.ida_atol_velocity = ida->number_or("atol_velocity", s.ida_atol_velocity, Range::positive);
@@ -20,6 +23,10 @@ IntegratorSettings read_integrator(TableReader& root) {
     s.max_step = ida->number_or("max_step", s.max_step, Range::non_negative);
     s.max_order = static_cast<int>(ida->integer_or("max_order", s.max_order, 1));
     if (s.max_order > 5) ida->fail("max_order", "expected a BDF order 1 … 5");
+    s.ida_slope_position_scale =
+        ida->choice("slope_scale", {"unit", "position_equivalent"}, "unit") == "position_equivalent";
+    s.ida_sundials_klu =
+        ida->choice("linear_solver", {"ancf_klu", "sundials_klu"}, "ancf_klu") == "sundials_klu";
     ida->finish();
   }
   if (auto ga = t.optional_table("genalpha")) {

@@ -13,8 +13,10 @@ namespace ancf {
 namespace {
 
 void run_ida(const Model& model, const IntegratorSettings& s, const std::vector<double>& times,
-             const SimulationHooks& hooks, SimulationCounters& c) {
-  GglProblem problem(model);
+             const SimulationHooks& hooks, SimulationCounters& c, SimulationTimings& timings) {
+  GglScales scales;
+  if (s.ida_slope_position_scale) scales.slope = SlopeScale::position_equivalent;
+  GglProblem problem(model, scales, ContactPatternOptions{.policy = s.contact_pattern});
   IdaOptions o;
   o.rtol = s.rtol;
   o.atol_position = s.ida_atol_position;
@@ -22,6 +24,7 @@ void run_ida(const Model& model, const IntegratorSettings& s, const std::vector<
   o.atol_multiplier = s.ida_atol_multiplier;
   o.max_step = s.max_step;
   o.max_order = s.max_order;
+  o.linear_solver = s.ida_sundials_klu ? IdaLinearSolver::sundials_klu : IdaLinearSolver::ancf_klu;
   o.output_times = times;
   o.stop_time = s.t_end;
   IdaIntegrator ida(problem, o);
@@ -37,7 +40,25 @@ void run_ida(const Model& model, const IntegratorSettings& s, const std::vector<
          {"Newton iterations", st.nonlinear_iterations},
          {"error test failures", st.error_test_failures},
          {"convergence failures", st.convergence_failures},
-         {"KLU re-pivotings", st.klu_repivots}};
+         {"KLU re-pivotings", st.klu_repivots},
+         {"full factorizations", st.full_factorizations},
+         {"refactorizations", st.refactorizations},
+         {"pattern changes", st.pattern_changes},
+         {"symbolic analyses", st.symbolic_analyses},
+         {"pattern non-zeros (largest)", problem.contact_pattern().statistics().most_nonzeros},
+         {"contact samples evaluated", problem.workspace().narrow_phase_samples}};
+    const Workspace& ws = problem.workspace();
+    const double kernels = ws.element_seconds, contact = ws.contact_seconds;
+    timings = {
+        {"wall", st.wall_time},
+        {"element kernels", kernels},
+        {"contact", contact},
+        {"assembly (rest of residual and Jacobian)",
+         st.residual_seconds + st.jacobian_seconds - kernels - contact},
+        {"factorization", st.factor_seconds},
+        {"solves", st.solve_seconds},
+        {"IDA (BDF, Newton, error test)", st.wall_time - st.residual_seconds - st.jacobian_seconds -
+                                              st.factor_seconds - st.solve_seconds}};
   };
   try {
     ida.run([&](double t, std::span<const double> y, std::span<const double> yp) {
@@ -53,8 +74,8 @@ void run_ida(const Model& model, const IntegratorSettings& s, const std::vector<
 }
 
 void run_genalpha(const Model& model, const IntegratorSettings& s, const std::vector<double>& times,
-                  const SimulationHooks& hooks, SimulationCounters& c) {
-  MultibodyProblem problem(model);
+                  const SimulationHooks& hooks, SimulationCounters& c, SimulationTimings& timings) {
+  MultibodyProblem problem(model, ContactPatternOptions{.policy = s.contact_pattern});
   GeneralizedAlphaOptions o;
   o.step_size = s.step;
   o.rho_infinity = s.rho_infinity;
@@ -89,6 +110,12 @@ void run_genalpha(const Model& model, const IntegratorSettings& s, const std::ve
          {"residual evaluations", st.residual_evaluations},
          {"matrix evaluations", st.matrix_evaluations},
          {"factorizations", st.factorizations},
+         {"full factorizations", st.full_factorizations},
+         {"refactorizations", st.factorizations - st.full_factorizations},
+         {"symbolic analyses", st.symbolic_analyses},
+         {"pattern changes", st.pattern_changes},
+         {"pattern non-zeros (largest)", problem.contact_pattern().statistics().most_nonzeros},
+         {"contact samples evaluated", problem.workspace().narrow_phase_samples},
          {"convergence failures", st.convergence_failures},
          {"step halvings", st.step_halvings},
          {"restarts", st.restarts}};
@@ -101,6 +128,18 @@ void run_genalpha(const Model& model, const IntegratorSettings& s, const std::ve
     if (o.max_damping_halvings > 0) c.push_back({"damped iterations", st.damped_iterations});
     if (o.refresh_on_active_set_change)
       c.push_back({"active-set refreshes", st.active_set_refreshes});
+    const Workspace& ws = problem.workspace();
+    const double kernels = ws.element_seconds, contact = ws.contact_seconds;
+    timings = {{"wall", st.wall_seconds},
+               {"element kernels", kernels},
+               {"contact", contact},
+               {"assembly (rest of residual and matrix)",
+                problem.residual_seconds() + problem.matrix_seconds() - kernels - contact},
+               {"factorization", st.factor_seconds},
+               {"solves", st.solve_seconds},
+               {"stepper (predictor, updates, tests)",
+                st.wall_seconds - problem.residual_seconds() - problem.matrix_seconds() -
+                    st.factor_seconds - st.solve_seconds}};
   };
   ga.initialize(0.0);
   snapshot();
@@ -132,11 +171,18 @@ std::vector<double> output_times(double interval, double t_end) {
 
 void simulate(const Model& model, const IntegratorSettings& settings,
               const std::vector<double>& times, const SimulationHooks& hooks,
-              SimulationCounters& counters) {
+              SimulationCounters& counters, SimulationTimings& timings) {
   if (settings.kind == IntegratorKind::ida)
-    run_ida(model, settings, times, hooks, counters);
+    run_ida(model, settings, times, hooks, counters, timings);
   else
-    run_genalpha(model, settings, times, hooks, counters);
+    run_genalpha(model, settings, times, hooks, counters, timings);
+}
+
+void simulate(const Model& model, const IntegratorSettings& settings,
+              const std::vector<double>& times, const SimulationHooks& hooks,
+              SimulationCounters& counters) {
+  SimulationTimings timings;
+  simulate(model, settings, times, hooks, counters, timings);
 }
 
 }  // namespace ancf

@@ -95,13 +95,32 @@ MatrixWeights GeneralizedAlphaStepper::iteration_weights(double h, bool scaled) 
 
 // --- start ---------------------------------------------------------------------------------------
 
+void GeneralizedAlphaStepper::update_pattern(double t, const VecX& q, const VecX& v, double h) {
+  // The problem's pattern may follow the state (contact pairs that are near, DESIGN §5): then the
+  // value arrays take its new size and each factorization re-runs its symbolic analysis first.
+  if (!problem_.update_pattern(t, as_span(q), as_span(v), h)) return;
+  ++pattern_revision_;
+  ++stats_.pattern_changes;
+  const Index nnz = problem_.iteration_pattern().nonzeros();
+  values_.setZero(nnz);
+  projector_values_.setZero(nnz);
+}
+
+void GeneralizedAlphaStepper::factor(KluSolver& klu, long& revision, const VecX& values) {
+  if (revision != pattern_revision_) {
+    klu.analyze();
+    revision = pattern_revision_;
+  }
+  klu.factor(as_span(values));
+}
+
 void GeneralizedAlphaStepper::refresh_projector(double t, const VecX& q) {
   // [M Φ_qᵀ; Φ_q 0] (weights (0, 0, 1): no stiffness, damping or geometric term). v, a and λ do
   // not enter; acc1_ is only a correctly sized argument.
   problem_.iteration_matrix(t, as_span(q), as_span(v_), as_span(acc1_), as_span(lambda_),
                             MatrixWeights{0.0, 0.0, 1.0}, as_span(projector_values_));
   ++stats_.matrix_evaluations;
-  projector_.factor(as_span(projector_values_));
+  factor(projector_, projector_revision_, projector_values_);
 }
 
 void GeneralizedAlphaStepper::project_positions(double t, VecX& q, int max_iterations) {
@@ -167,6 +186,9 @@ void GeneralizedAlphaStepper::initialize(double t0, const VecX& q0, const VecX& 
   klu_base_[1] = klu_.refactorizations();
   klu_base_[2] = projector_.full_factorizations();
   klu_base_[3] = projector_.refactorizations();
+  klu_base_[4] = klu_.symbolic_analyses() + projector_.symbolic_analyses();
+  klu_seconds_base_[0] = klu_.factor_seconds() + projector_.factor_seconds();
+  klu_seconds_base_[1] = klu_.solve_seconds() + projector_.solve_seconds();
   ScopedTimer timer(stats_.wall_seconds);
   t_ = t0;
   t_base_ = t0;
@@ -186,13 +208,6 @@ void GeneralizedAlphaStepper::initialize(double t0, const VecX& q0, const VecX& 
   stats_.max_step = 0.0;
   initialized_ = true;
   update_factorization_counters();
-}
-
-void GeneralizedAlphaStepper::update_factorization_counters() {
-  stats_.full_factorizations =
-      klu_.full_factorizations() - klu_base_[0] + projector_.full_factorizations() - klu_base_[2];
-  stats_.factorizations = stats_.full_factorizations + klu_.refactorizations() - klu_base_[1] +
-                          projector_.refactorizations() - klu_base_[3];
 }
 
 // --- one step ------------------------------------------------------------------------------------
@@ -217,10 +232,11 @@ void GeneralizedAlphaStepper::predict(double h) {
 }
 
 void GeneralizedAlphaStepper::refresh_matrix(double t1, double h) {
+  update_pattern(t1, q1_, v1_, h);
   problem_.iteration_matrix(t1, as_span(q1_), as_span(v1_), as_span(acc1_), as_span(lambda1_),
                             iteration_weights(h, options_.scaling), as_span(values_));
   ++stats_.matrix_evaluations;
-  klu_.factor(as_span(values_));
+  factor(klu_, klu_revision_, values_);
   matrix_signature_ = problem_.active_set_signature();  // of the residual at this iterate
   matrix_h_ = h;
   matrix_age_ = 0;
@@ -472,14 +488,20 @@ double GeneralizedAlphaStepper::local_error(double h) {
     // frequency ω is scaled by 1/(1 + (βh²(1 − α_f)/(1 − α_m))ω²): resolved modes keep their
     // error to O(h²ω²), unresolved stiff ones (axial, contact), which the scheme damps instead of
     // resolving, drop out, and the constraint rows remove the normal part the scheme enforces.
-    // M e from the n×n block of the projector values (= M: the projector is M with Φ_q borders).
+    // M e from the n×n block of [M Φ_qᵀ; Φ_q 0], assembled once per pattern (M is constant).
+    if (mass_revision_ != pattern_revision_) {
+      mass_values_.setZero(problem_.iteration_pattern().nonzeros());
+      problem_.iteration_matrix(t_, as_span(q_), as_span(v_), as_span(acc_), as_span(lambda_),
+                                MatrixWeights{0.0, 0.0, 1.0}, as_span(mass_values_));
+      mass_revision_ = pattern_revision_;
+    }
     const MatrixWeights w = iteration_weights(h, options_.scaling);
     const std::vector<Index>& start = problem_.iteration_pattern().column_start();
     const std::vector<Index>& row = problem_.iteration_pattern().row_index();
     rhs_.setZero();
     for (Index c = 0; c < n_; ++c)
       for (Index k = start[c]; k < start[c + 1] && row[k] < n_; ++k)
-        rhs_[row[k]] += w.w_a * projector_values_[k] * increment_[c];
+        rhs_[row[k]] += w.w_a * mass_values_[k] * increment_[c];
     klu_.solve(as_span(rhs_));
     increment_ = rhs_.head(n_);
   }
@@ -600,6 +622,18 @@ void GeneralizedAlphaStepper::step(double t_limit) {
     klu_.reset_pivoting();
   }
   update_factorization_counters();
+}
+
+void GeneralizedAlphaStepper::update_factorization_counters() {
+  stats_.full_factorizations =
+      klu_.full_factorizations() - klu_base_[0] + projector_.full_factorizations() - klu_base_[2];
+  stats_.factorizations = stats_.full_factorizations + klu_.refactorizations() - klu_base_[1] +
+                          projector_.refactorizations() - klu_base_[3];
+  stats_.symbolic_analyses =
+      klu_.symbolic_analyses() + projector_.symbolic_analyses() - klu_base_[4];
+  stats_.factor_seconds =
+      klu_.factor_seconds() + projector_.factor_seconds() - klu_seconds_base_[0];
+  stats_.solve_seconds = klu_.solve_seconds() + projector_.solve_seconds() - klu_seconds_base_[1];
 }
 
 void GeneralizedAlphaStepper::advance_to(double t_end) {

@@ -16,6 +16,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "klu_linear_solver.hpp"
+
 namespace ancf {
 namespace {
 
@@ -60,6 +62,20 @@ T* check_pointer(T* p, const char* call) {
   return p;
 }
 
+using Clock = std::chrono::steady_clock;
+// Adds the wall time of a scope to a counter.
+class Stopwatch {
+ public:
+  explicit Stopwatch(double& seconds) : seconds_(seconds), start_(Clock::now()) {}
+  ~Stopwatch() { seconds_ += std::chrono::duration<double>(Clock::now() - start_).count(); }
+  Stopwatch(const Stopwatch&) = delete;
+  Stopwatch& operator=(const Stopwatch&) = delete;
+
+ private:
+  double& seconds_;
+  Clock::time_point start_;
+};
+
 std::span<double> view(N_Vector v) {
   return {N_VGetArrayPointer(v), static_cast<std::size_t>(N_VGetLength(v))};
 }
@@ -92,6 +108,10 @@ std::string IdaStatistics::table() const {
   row("root function evaluations", root_evaluations);
   row("KLU re-pivotings", klu_repivots);
   row("re-initializations", reinitializations);
+  row("pattern changes", pattern_changes);
+  row("symbolic analyses", symbolic_analyses);
+  row("full factorizations", full_factorizations);
+  row("refactorizations", refactorizations);
   row("last order", last_order);
   row("last step [s]", fmt::format("{:.3e}", last_step));
   row("wall time [s]", fmt::format("{:.4f}", wall_time));
@@ -106,11 +126,15 @@ struct IdaIntegrator::Impl {
   Vector y, yp, id, atol;
   Matrix jacobian;
   LinearSolver klu;
+  std::unique_ptr<detail::KluLinearSolver> own_klu;  // content of klu with ancf_klu
   Memory mem;
   double cj_pivoted = 0.0;      // c_j of the last factorization with fresh pivoting (0: none yet)
   IdaStatistics before_reinit;  // IDAReInit resets IDA's counters: the sums up to then
   long repivots = 0, reinitializations = 0;
+  long pattern_changes = 0,
+       symbolic_analyses = 1;  // KLU analyses: the first setup's and each ReInit
   double wall_time = 0.0;
+  double residual_seconds = 0.0, jacobian_seconds = 0.0;  // inside the callbacks
   std::exception_ptr fatal;      // a non-recoverable exception caught in a callback
   std::string message;           // IDA's last error message
   std::string callback_message;  // the last recoverable error raised in a callback
@@ -137,6 +161,7 @@ struct IdaIntegrator::Impl {
 
   static int residual_fn(realtype t, N_Vector y, N_Vector yp, N_Vector r, void* user) {
     auto& self = *static_cast<Impl*>(user);
+    const Stopwatch watch(self.residual_seconds);
     return self.guard([&] {
       const auto out = view(r);
       self.problem.residual(t, view(y), view(yp), out);
@@ -150,8 +175,18 @@ struct IdaIntegrator::Impl {
   static int jacobian_fn(realtype t, realtype cj, N_Vector y, N_Vector yp, N_Vector, SUNMatrix jac,
                          void* user, N_Vector, N_Vector, N_Vector) {
     auto& self = *static_cast<Impl*>(user);
+    const Stopwatch watch(self.jacobian_seconds);
     return self.guard([&] {
-      // SUNDIALS 6.4 zeroed the index arrays too: restore the fixed pattern first.
+      // The pattern may follow the state (contact pairs that are near, DESIGN §5), asked for a
+      // Jacobian that serves about one step: a change re-sizes the matrix and makes KLU's next
+      // setup re-run its symbolic analysis.
+      realtype h = 0.0;
+      check(IDAGetCurrentStep(self.mem.get(), &h), "IDAGetCurrentStep");
+      if (self.problem.update_jacobian_pattern(t, view(y), std::abs(h))) {
+        self.pattern_changed(jac);
+        self.cj_pivoted = cj;
+      }
+      // SUNDIALS 6.4 zeroed the index arrays too: restore the pattern first.
       const SparsityPattern& p = self.problem.jacobian_pattern();
       std::copy(p.column_start().begin(), p.column_start().end(),
                 SUNSparseMatrix_IndexPointers(jac));
@@ -167,13 +202,30 @@ struct IdaIntegrator::Impl {
       if (self.cj_pivoted == 0.0) {
         self.cj_pivoted = cj;  // the first factorization after (re)initialization pivots anyway
       } else if (ratio > 1.0 && (cj > ratio * self.cj_pivoted || cj * ratio < self.cj_pivoted)) {
-        check(SUNLinSol_KLUReInit(self.klu.get(), jac, p.nonzeros(), SUNKLU_REINIT_PARTIAL),
-              "SUNLinSol_KLUReInit");
+        if (self.own_klu) {
+          self.own_klu->klu.reset_pivoting();
+        } else {
+          check(SUNLinSol_KLUReInit(self.klu.get(), jac, p.nonzeros(), SUNKLU_REINIT_PARTIAL),
+                "SUNLinSol_KLUReInit");
+          ++self.symbolic_analyses;  // a partial ReInit frees the symbolic analysis as well
+        }
         self.cj_pivoted = cj;
         ++self.repivots;
       }
       return true;
     });
+  }  // The problem's pattern changed: the matrix takes its size, and the next setup analyses it.
+  void pattern_changed(SUNMatrix jac) {
+    const Index nnz = problem.jacobian_pattern().nonzeros();
+    if (own_klu) {
+      if (SUNSparseMatrix_Reallocate(jac, nnz) != 0)
+        throw SolverError("SUNDIALS: SUNSparseMatrix_Reallocate failed");
+      ++own_klu->pattern_revision;
+    } else {
+      check(SUNLinSol_KLUReInit(klu.get(), jac, nnz, SUNKLU_REINIT_FULL), "SUNLinSol_KLUReInit");
+      ++symbolic_analyses;
+    }
+    ++pattern_changes;
   }
 
   static int root_fn(realtype t, N_Vector y, N_Vector yp, realtype* g, void* user) {
@@ -258,10 +310,15 @@ struct IdaIntegrator::Impl {
     r.callback_message = callback_message;
     if (IDAGetCurrentTime(mem.get(), &r.t) != IDA_SUCCESS) r.t = std::nan("");
     if (IDAGetCurrentStep(mem.get(), &r.step) != IDA_SUCCESS) r.step = std::nan("");
-    const sun_klu_common* common = SUNLinSol_KLUGetCommon(klu.get());
-    if ((flag == IDA_LSETUP_FAIL || flag == IDA_LSOLVE_FAIL) && common &&
-        common->status == KLU_SINGULAR && common->singular_col >= 0 && common->singular_col < n) {
-      r.component = common->singular_col;
+    Index singular = -1;
+    if (own_klu) {
+      singular = own_klu->klu.singular_column();
+    } else if (const sun_klu_common* common = SUNLinSol_KLUGetCommon(klu.get());
+               common && common->status == KLU_SINGULAR) {
+      singular = common->singular_col;
+    }
+    if ((flag == IDA_LSETUP_FAIL || flag == IDA_LSOLVE_FAIL) && singular >= 0 && singular < n) {
+      r.component = singular;
       r.measure = "singular column";
       r.value = 0.0;
     } else if (flag == IDA_CONV_FAIL || flag == IDA_REP_RES_ERR || flag == IDA_RES_FAIL ||
@@ -338,7 +395,12 @@ IdaIntegrator::IdaIntegrator(DaeProblem& problem, IdaOptions options)
         "IdaIntegrator: the Jacobian pattern must be frozen and of the problem's size");
   s.jacobian.reset(
       check_pointer(SUNSparseMatrix(s.n, s.n, p.nonzeros(), CSC_MAT, ctx), "SUNSparseMatrix"));
-  s.klu.reset(check_pointer(SUNLinSol_KLU(s.y.get(), s.jacobian.get(), ctx), "SUNLinSol_KLU"));
+  if (options_.linear_solver == IdaLinearSolver::ancf_klu) {
+    s.own_klu = std::make_unique<detail::KluLinearSolver>(p);
+    s.klu.reset(detail::make_klu_linear_solver(*s.own_klu, ctx));
+  } else {
+    s.klu.reset(check_pointer(SUNLinSol_KLU(s.y.get(), s.jacobian.get(), ctx), "SUNLinSol_KLU"));
+  }
   check(IDASetLinearSolver(mem, s.klu.get(), s.jacobian.get()), "IDASetLinearSolver");
   check(IDASetJacFn(mem, &Impl::jacobian_fn), "IDASetJacFn");
   if (problem.root_count() > 0) {
@@ -413,8 +475,8 @@ void IdaIntegrator::reinitialize(double t, std::span<const double> y_new, bool p
     if (!p.frozen() || p.size() != s.n)
       throw SolverError(
           "IdaIntegrator::reinitialize: the new pattern must be frozen and of the same size");
-    check(SUNLinSol_KLUReInit(s.klu.get(), s.jacobian.get(), p.nonzeros(), SUNKLU_REINIT_FULL),
-          "SUNLinSol_KLUReInit");
+    s.pattern_changed(s.jacobian.get());
+    --s.pattern_changes;  // an event's re-initialization, not a contact-pattern change
   }
   const IdaStatistics so_far = statistics();
   check(IDAReInit(s.mem.get(), t, s.y.get(), s.yp.get()), "IDAReInit");
@@ -427,6 +489,14 @@ void IdaIntegrator::reinitialize(double t, std::span<const double> y_new, bool p
   s.cj_pivoted = 0.0;
   ++s.reinitializations;
   t_ = t;
+}
+
+Index IdaIntegrator::worst_local_error(double& weighted) const {
+  Impl& s = *impl_;
+  weighted = 0.0;
+  Vector ele(check_pointer(N_VClone(s.y.get()), "N_VClone"));
+  if (IDAGetEstLocalErrors(s.mem.get(), ele.get()) != IDA_SUCCESS) return -1;
+  return s.worst(ele.get(), true, weighted);
 }
 
 IdaStatistics IdaIntegrator::statistics() const {
@@ -458,7 +528,19 @@ IdaStatistics IdaIntegrator::statistics() const {
     st.last_order = b.last_order, st.last_step = b.last_step;  // no step since
   st.klu_repivots = s.repivots;
   st.reinitializations = s.reinitializations;
+  st.pattern_changes = s.pattern_changes;
+  st.symbolic_analyses = s.symbolic_analyses;
+  if (s.own_klu) {
+    const KluSolver& k = s.own_klu->klu;
+    st.symbolic_analyses = k.symbolic_analyses();
+    st.full_factorizations = k.full_factorizations();
+    st.refactorizations = k.refactorizations();
+    st.factor_seconds = k.factor_seconds();
+    st.solve_seconds = k.solve_seconds();
+  }
   st.wall_time = s.wall_time;
+  st.residual_seconds = s.residual_seconds;
+  st.jacobian_seconds = s.jacobian_seconds;
   return st;
 }
 

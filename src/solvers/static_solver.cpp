@@ -1,8 +1,8 @@
 #include "ancf/solvers/static_solver.hpp"
 
+#include <fmt/format.h>
 #include <chrono>
 #include <cmath>
-#include <fmt/format.h>
 
 #include "ancf/core/error.hpp"
 
@@ -31,8 +31,8 @@ int StaticSolver::newton(VecX& y, double s) {
     try {
       klu_.factor(as_span(values_));
     } catch (const SolverError& e) {
-      throw SolverError(fmt::format("static Newton: {} at iteration {}; {}", e.what(), it,
-                                    worst_residual(s)));
+      throw SolverError(
+          fmt::format("static Newton: {} at iteration {}; {}", e.what(), it, worst_residual(s)));
     }
     residual_ = -residual_;
     klu_.solve(as_span(residual_));  // residual_ now holds Δy
@@ -65,8 +65,9 @@ StaticSolverStatistics StaticSolver::solve(VecX& y) {
       y = y_converged;
       klu_.reset_pivoting();
       if (cuts_left-- <= 0) {
-        throw SolverError(fmt::format("static solve stopped at load factor {:.6g} after {} step cuts: {}",
-                                      s, options_.max_step_cuts, e.what()));
+        throw SolverError(
+            fmt::format("static solve stopped at load factor {:.6g} after {} step cuts: {}", s,
+                        options_.max_step_cuts, e.what()));
       }
       ds *= 0.5;
       ++stats.step_cuts;
@@ -79,7 +80,8 @@ StaticSolverStatistics StaticSolver::solve(VecX& y) {
   stats.newton_iterations = iterations_;
   stats.full_factorizations = klu_.full_factorizations();
   stats.refactorizations = klu_.refactorizations();
-  stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;
 }
 

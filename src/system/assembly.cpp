@@ -2,12 +2,20 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <stdexcept>
 
+#include "ancf/system/contact_pattern.hpp"
 #include "contact_sampling.hpp"
 
 namespace ancf {
 namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
 
 using BlockVec = std::array<Vec3, AffineVector::kMaxTerms>;
 
@@ -42,6 +50,15 @@ struct OwnPattern {
   std::span<double> values;
   double& position(Index s) const { return values[s]; }
   double& velocity(Index s) const { return values[s]; }
+};
+// The model's slots mapped into a larger pattern with shared position and velocity blocks (the
+// contact pattern, contact_pattern.hpp): one indirection per write.
+struct Mapped {
+  static constexpr bool kSharedBlocks = true;
+  std::span<double> values;
+  std::span<const Index> map;
+  double& position(Index s) const { return values[map[s]]; }
+  double& velocity(Index s) const { return values[map[s]]; }
 };
 struct Scattered {
   static constexpr bool kSharedBlocks = false;
@@ -103,6 +120,8 @@ class ResidualContactSink final : public detail::ContactSink {
 };
 
 // Contact samples: −w_q ∂Q/∂q and −w_v ∂Q/∂v into the four 12×12 blocks of each sample.
+// A coupling block the pattern does not hold (ab == nullptr) is left out and counted: it means
+// the contact pattern was not updated at this state (ContactPattern::update).
 template <class Target>
 class MatrixContactSink final : public detail::ContactSink {
  public:
@@ -110,10 +129,15 @@ class MatrixContactSink final : public detail::ContactSink {
   void add(const ContactSampleResult& s, const detail::ContactSampleBlocks& b) override {
     scatter(s, *b.aa, 0, 0);
     if (b.first_b < 0) return;
+    scatter(s, *b.bb, 12, 12);
+    if (!b.ab) {
+      ++missing;
+      return;
+    }
     scatter(s, *b.ab, 0, 12);
     scatter(s, *b.ba, 12, 0);
-    scatter(s, *b.bb, 12, 12);
   }
+  long missing = 0;
 
  private:
   void scatter(const ContactSampleResult& s, const BlockSlots& slots, int r0, int c0) const {
@@ -137,6 +161,7 @@ void add_iteration_matrix_to(const Model& model, const SystemState& state,
   const auto frames = ws.frames_at(model, state.t);
   const auto q = as_span(state.q), v = as_span(state.v);
 
+  const auto element_start = Clock::now();
   for_each_element(
       model, state.q, state.v,
       [&](Index ci, Index j, const CableData& c, Index, const Vec12& e, const Vec12& e_dot) {
@@ -165,6 +190,7 @@ void add_iteration_matrix_to(const Model& model, const SystemState& state,
         if (w.w_v != 0.0 && c.section.mass_damping > 0.0)  // ∂(α M v)/∂v = α M
           add_mass_matrix(c.mass[j], slots, w.w_v * c.section.mass_damping, t);
       });
+  ws.element_seconds += seconds_since(element_start);
   if (w.w_a != 0.0)
     for (Index b = 0; b < static_cast<Index>(model.bodies().size()); ++b)
       add_mass_matrix(model.bodies()[b].mass, model.body_slots(b), w.w_a, t);
@@ -183,9 +209,12 @@ void add_iteration_matrix_to(const Model& model, const SystemState& state,
     subtract_force_jacobian(f.slots, ws.force, w.w_q, w.w_v, t);
   }
   if (model.contact_pair_count() > 0 && (w.w_q != 0.0 || w.w_v != 0.0)) {
+    const auto contact_start = Clock::now();
     MatrixContactSink<Target> sink(t, w.w_q, w.w_v);
     detail::visit_contact_samples(model, state, ws, {.jacobians = true, .all_samples = false},
                                   sink);
+    ws.missing_coupling_samples += sink.missing;
+    ws.contact_seconds += seconds_since(contact_start);
   }
 
   // Constraint blocks Φ_q, Φ_qᵀ and the geometric stiffness w_q ∂(Φ_qᵀλ)/∂q = w_q λ α_k β_m I₃.
@@ -263,6 +292,7 @@ void assemble_residual(const Model& model, const SystemState& state, double load
   const auto frames = ws.frames_at(model, state.t);
   const auto q = as_span(state.q), v = as_span(state.v);
 
+  const auto element_start = Clock::now();
   for_each_element(
       model, state.q, state.v,
       [&](Index, Index j, const CableData& c, Index base, const Vec12& e, const Vec12& e_dot) {
@@ -272,6 +302,7 @@ void assemble_residual(const Model& model, const SystemState& state, double load
         if (c.section.mass_damping > 0.0)
           add_mass_times(c.section.mass_damping * c.mass[j], base, state.v, rq);
       });
+  ws.element_seconds += seconds_since(element_start);
   if (inertia)
     for (const BodyData& b : model.bodies())
       add_mass_times(b.mass, b.first_coordinate, state.a, rq);
@@ -293,9 +324,11 @@ void assemble_residual(const Model& model, const SystemState& state, double load
     subtract_force(f.blocks, ws.force, 1.0, rq);
   }
   if (model.contact_pair_count() > 0) {
+    const auto contact_start = Clock::now();
     ResidualContactSink sink(rq, ws.active_contact_signature);
     detail::visit_contact_samples(model, state, ws, {.jacobians = false, .all_samples = false},
                                   sink);
+    ws.contact_seconds += seconds_since(contact_start);
   }
 
   BlockVec gu, gw;
@@ -317,12 +350,35 @@ void assemble_residual(const Model& model, const SystemState& state, double load
 void assemble_iteration_matrix(const Model& model, const SystemState& state,
                                const IterationWeights& w, Workspace& ws, std::span<double> values) {
   std::fill(values.begin(), values.end(), 0.0);
+  ws.coupling = nullptr;
+  const long missing = ws.missing_coupling_samples;
   add_iteration_matrix_to(model, state, w, ws, OwnPattern{values});
+  // The model's own pattern has no coupling blocks: a contact touching a body or another cable
+  // needs the ContactPattern overload (a silently partial matrix would only slow Newton down).
+  if (ws.missing_coupling_samples != missing)
+    throw std::logic_error(
+        "assemble_iteration_matrix: a contact couples two components, whose blocks the model's "
+        "own pattern does not hold; assemble into a ContactPattern");
+}
+
+void assemble_iteration_matrix(const Model& model, const SystemState& state,
+                               const IterationWeights& w, const ContactPattern& contact,
+                               Workspace& ws, std::span<double> values) {
+  std::fill(values.begin(), values.end(), 0.0);
+  ws.coupling = &contact.coupling();
+  if (contact.identity())
+    add_iteration_matrix_to(model, state, w, ws, OwnPattern{values});
+  else
+    add_iteration_matrix_to(model, state, w, ws, Mapped{values, contact.position_of_slot()});
+  ws.coupling = nullptr;
 }
 
 void add_iteration_matrix(const Model& model, const SystemState& state, const IterationWeights& w,
-                          const MatrixScatter& scatter, Workspace& ws, std::span<double> values) {
+                          const MatrixScatter& scatter, const ContactCoupling* coupling,
+                          Workspace& ws, std::span<double> values) {
+  ws.coupling = coupling;
   add_iteration_matrix_to(model, state, w, ws, Scattered{values, scatter});
+  ws.coupling = nullptr;
 }
 
 void assemble_velocity_constraint(const Model& model, const SystemState& state, Workspace& ws,

@@ -1,6 +1,5 @@
-// ModelBuilder: contact shapes and candidate pairs (DESIGN §5). The pattern blocks of every pair
-// are reserved in model_pattern.cpp, whether or not the pair ever touches, so the sparsity
-// pattern — and KLU's symbolic analysis — never changes during a run.
+// ModelBuilder: contact shapes and candidate pairs (DESIGN §5). Their coupling blocks are not in
+// the model's pattern: a ContactPattern holds those of the pairs that are near.
 #include <cmath>
 #include <string>
 #include <tuple>

@@ -4,9 +4,9 @@
 #include <limits>
 
 #include "ancf/physics/hermite_shape.hpp"
+#include "ancf/system/contact_pattern.hpp"
 
 namespace ancf::detail {
-namespace {
 
 // Pose of a shape's owner at the current state: ground (identity), driven frame (prescribed), or
 // rigid body (read from its natural coordinates; P then includes the body's 12 coordinates).
@@ -39,23 +39,19 @@ ShapeOwnerPose owner_pose(const ContactShapeData& s, const SystemState& state,
   return pose;
 }
 
-// Broad-phase test of one element box (already inflated by the cable radius) against a shape.
-struct ShapeBroadPhase {
-  const ContactShape& shape;
-  const ShapeOwnerPose& pose;
-  Aabb box;  // global box of a sphere or cylinder
-  ShapeBroadPhase(const ContactShape& s, const ShapeOwnerPose& p) : shape(s), pose(p) {
-    if (const auto* sphere = std::get_if<SphereShape>(&s))
-      box = shape_bounding_box(*sphere, p.origin, p.rotation);
-    if (const auto* cyl = std::get_if<CappedCylinderShape>(&s))
-      box = shape_bounding_box(*cyl, p.origin, p.rotation);
-  }
-  [[nodiscard]] bool may_touch(const Aabb& element_box) const {
-    if (const auto* plane = std::get_if<PlaneShape>(&shape))
-      return may_touch_plane(*plane, pose.origin, pose.rotation, element_box);
-    return element_box.overlaps(box);
-  }
-};
+ShapeBroadPhase::ShapeBroadPhase(const ContactShape& s, const ShapeOwnerPose& p)
+    : shape(s), pose(p) {
+  if (const auto* sphere = std::get_if<SphereShape>(&s))
+    box = shape_bounding_box(*sphere, p.origin, p.rotation);
+  if (const auto* cyl = std::get_if<CappedCylinderShape>(&s))
+    box = shape_bounding_box(*cyl, p.origin, p.rotation);
+}
+
+bool ShapeBroadPhase::may_touch(const Aabb& element_box) const {
+  if (const auto* plane = std::get_if<PlaneShape>(&shape))
+    return may_touch_plane(*plane, pose.origin, pose.rotation, element_box);
+  return element_box.overlaps(box);
+}
 
 // Whole-cable boxes of every cable that takes part in a contact pair: the box of the Bézier
 // control points of all its elements (each element's box is that of its four control points, and
@@ -97,6 +93,9 @@ const std::vector<Aabb>& element_boxes_of(const Model& model, const SystemState&
   return boxes;
 }
 
+namespace {
+
+
 CableSample sample_of(const CableData& cable, Index element, int k, int samples,
                       const SystemState& state) {
   CableSample s;
@@ -108,11 +107,6 @@ CableSample sample_of(const CableData& cable, Index element, int k, int samples,
   s.weight = s.length / samples;
   s.radius = cable.section.radius;
   return s;
-}
-
-Aabb inflated(Aabb box, double margin) {
-  box.inflate(margin);
-  return box;
 }
 
 void visit_cable_shape(const Model& model, const SystemState& state, Workspace& ws,
@@ -138,7 +132,11 @@ void visit_cable_shape(const Model& model, const SystemState& state, Workspace& 
     if (!how.all_samples && !broad.may_touch(inflated((*boxes)[j], cable.section.radius))) continue;
     blocks.first_a = cable.first_coordinate + 6 * j;
     blocks.aa = &model.element_slots(c.cable, j);
-    if (body) blocks.ab = &c.element_body[local], blocks.ba = &c.body_element[local];
+    if (body) {
+      const Index k = ws.coupling ? ws.coupling->shape_block[pair][local] : -1;
+      blocks.ab = k >= 0 ? &ws.coupling->blocks[2 * k] : nullptr;
+      blocks.ba = k >= 0 ? &ws.coupling->blocks[2 * k + 1] : nullptr;
+    }
     for (int k = 0; k < c.samples; ++k) {
       const CableSample s = sample_of(cable, j, k, c.samples, state);
       ++ws.narrow_phase_samples;
@@ -203,8 +201,9 @@ void visit_cable_cable(const Model& model, const SystemState& state, Workspace& 
       const Index eb = b.first_coordinate + 6 * best_j;
       blocks.first_b = eb;
       blocks.bb = &model.element_slots(c.cable_b, best_j);
-      blocks.ab = &c.ab[li * nb + best_local];
-      blocks.ba = &c.ba[li * nb + best_local];
+      const Index kb = ws.coupling ? ws.coupling->cable_block[pair][li * nb + best_local] : -1;
+      blocks.ab = kb >= 0 ? &ws.coupling->blocks[2 * kb] : nullptr;
+      blocks.ba = kb >= 0 ? &ws.coupling->blocks[2 * kb + 1] : nullptr;
       if (evaluate_cable_cable_contact(c.law, s, state.q.segment<12>(eb), state.v.segment<12>(eb),
                                        b.elements[best_j].length, b.section.radius, best.xi,
                                        how.jacobians, ws.contact) ||

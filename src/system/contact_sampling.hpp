@@ -11,7 +11,8 @@ namespace ancf::detail {
 /// Where a sample's Q and Jacobian go: the 12 coordinates of the cable element (side a) and the
 /// 12 of the body or cable-b element (side b; first_b = −1 when the other side is ground or a
 /// driven frame), and the value slots of the four 12×12 blocks (column-major; side-b blocks are
-/// nullptr when first_b = −1).
+/// nullptr when first_b = −1; the coupling blocks ab, ba are nullptr also when the current
+/// contact pattern does not hold them, ContactPattern).
 struct ContactSampleBlocks {
   Index pair = 0;
   Index cable = 0;  ///< cable of side a
@@ -36,6 +37,32 @@ struct ContactVisit {
   /// true: no broad phase, every sample reaches the sink, active or not (outputs: exact min gap).
   bool all_samples = false;
 };
+
+/// Pose of a shape's owner at `state`: ground (identity), driven frame (prescribed) or rigid body
+/// (read from its natural coordinates).
+ShapeOwnerPose owner_pose(const ContactShapeData& s, const SystemState& state,
+                          std::span<const FrameKinematics> frames);
+
+/// Broad-phase test of a (radius-inflated) element box against a placed shape.
+struct ShapeBroadPhase {
+  const ContactShape& shape;
+  const ShapeOwnerPose& pose;
+  Aabb box;  ///< global box of a sphere or cylinder (unused for a plane)
+  ShapeBroadPhase(const ContactShape& s, const ShapeOwnerPose& p);
+  [[nodiscard]] bool may_touch(const Aabb& element_box) const;
+};
+
+/// Refresh the whole-cable boxes of the cables in contact pairs and mark their element boxes
+/// stale (element_boxes_of recomputes them on demand).
+void refresh_cable_boxes(const Model& model, const SystemState& state, Workspace& ws);
+/// Element boxes of cable c at `state` (computed at most once per refresh_cable_boxes).
+const std::vector<Aabb>& element_boxes_of(const Model& model, const SystemState& state,
+                                          Workspace& ws, Index c);
+
+inline Aabb inflated(Aabb box, double margin) {
+  box.inflate(margin);
+  return box;
+}
 
 /// Smallest gap d − r over every point of the centreline of cable–shape pair `pair`'s candidate
 /// elements (not only at its samples) [m]: an output, not used by the contact forces.

@@ -29,25 +29,32 @@ bool is_length(const Model& model, Index i) {
 
 }  // namespace
 
-GglProblem::GglProblem(const Model& model, GglScales scales)
+GglProblem::GglProblem(const Model& model, GglScales scales, ContactPatternOptions contact)
     : model_(model),
       n_(model.coordinate_count()),
       m_(model.multiplier_count()),
       state_(SystemState::initial(model)),
-      workspace_(model) {
+      workspace_(model),
+      contact_(model, contact) {
   build_pattern();
   compute_scales(scales);
 }
 
-// Every entry of model.pattern() is copied to the GGL blocks it feeds (see the header's block
-// matrix); the slots are looked up once here, so jacobian() only adds through index arrays.
+bool GglProblem::update_jacobian_pattern(double t, std::span<const double> y, double horizon) {
+  state_.t = t;
+  state_.q = Eigen::Map<const VecX>(y.data(), n_);
+  state_.v = Eigen::Map<const VecX>(y.data() + n_, n_);
+  if (!contact_.update(state_, horizon, workspace_)) return false;
+  build_pattern();
+  return true;
+}
+
+// Every assembly slot of the contact pattern (the model's pattern entries, then the near
+// coupling entries) is copied to the GGL blocks it feeds (see the header's block matrix); the
+// slots are looked up once here, so jacobian() only adds through index arrays.
 void GglProblem::build_pattern() {
-  const SparsityPattern& p = model_.pattern();
-  const Index nnz = p.nonzeros(), n = n_, v0 = n_, l0 = 2 * n_, u0 = 2 * n_ + m_;
-  std::vector<Index> row(nnz), col(nnz);
-  for (Index c = 0; c < p.size(); ++c)
-    for (Index k = p.column_start()[c]; k < p.column_start()[c + 1]; ++k)
-      row[k] = p.row_index()[k], col[k] = c;
+  const Index nnz = contact_.slot_count(), n = n_, v0 = n_, l0 = 2 * n_, u0 = 2 * n_ + m_;
+  const std::span<const Index> row = contact_.slot_rows(), col = contact_.slot_columns();
   std::vector<char> geometric(nnz, 0);
   for (Index i = 0; i < m_; ++i)
     for (const Index s : model_.geometric_slots(i)) geometric[s] = 1;
@@ -124,6 +131,19 @@ void GglProblem::compute_scales(GglScales given) {
 
   scale_.assign(size(), 1.0);
   for (Index i = 0; i < n_; ++i) scale_[i] = is_length(model_, i) ? big_l : 1.0;
+  if (given.slope == SlopeScale::position_equivalent) {
+    // A nodal slope enters the element's positions through S2, S4 with max|S2| = max|S4| = 4l/27
+    // (ξ = 1/3, 2/3): a slope error δ moves centreline points by at most (4l/27)δ, so the slope
+    // whose error moves them by L has the scale L/(4l/27), l the shorter adjacent element.
+    for (const CableData& c : model_.cables())
+      for (Index k = 0; k < c.node_count; ++k) {
+        const Index last = static_cast<Index>(c.elements.size()) - 1;
+        double l = c.elements[std::min(k, last)].length;
+        if (k > 0) l = std::min(l, c.elements[k - 1].length);
+        for (int d = 3; d < 6; ++d)
+          scale_[c.first_coordinate + 6 * k + d] = big_l / (4.0 * l / 27.0);
+      }
+  }
 
   // Energy: work of the constant loads over one scale of motion, initial kinetic and strain energy.
   double energy = kinetic_energy(model_, model_.initial_velocities()) + strain_energy(model_, q0);
@@ -220,7 +240,8 @@ void GglProblem::jacobian(double t, std::span<const double> y, std::span<const d
   std::fill(values.begin(), values.end(), 0.0);
   // Rows F_v (K, D + c_j M, Φ_qᵀ) and F_Φ (Φ_q): the model's iteration matrix, one pass.
   add_iteration_matrix(model_, state_, IterationWeights{1.0, 1.0, c_j, 1.0},
-                       MatrixScatter{position_slot_, velocity_slot_}, workspace_, values);
+                       MatrixScatter{position_slot_, velocity_slot_}, &contact_.coupling(),
+                       workspace_, values);
   for (Index i = 0; i < n_; ++i) {
     values[identity_q_slot_[i]] += c_j;
     values[identity_v_slot_[i]] -= 1.0;

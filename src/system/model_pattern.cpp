@@ -1,5 +1,6 @@
-// The fixed sparsity pattern of the model's iteration matrix and the scatter slot of every
-// contribution, computed once in finalize() (DESIGN §7: fixed pattern, KLU analysis once).
+// The model's own sparsity pattern of the iteration matrix and the scatter slot of every
+// contribution, computed once in finalize(). Contact coupling blocks are not in it: they follow
+// the pairs that are near (ContactPattern, DESIGN §5).
 #include "ancf/system/model_builder.hpp"
 
 namespace ancf {
@@ -50,47 +51,6 @@ void collect_forces(Elements& elements, const SparsityPattern& p) {
   }
 }
 
-// Rows [row_base, +12) × columns [col_base, +12), column-major: the coupling block of a contact
-// pair between a cable element and a body or another element.
-template <class Visit>
-void visit_coupling_block(Index row_base, Index col_base, Visit&& visit) {
-  for (Index col = 0; col < 12; ++col)
-    for (Index r = 0; r < 12; ++r) visit(row_base + r, col_base + col);
-}
-
-// Calls visit(row_base, col_base, slots_out) for both coupling blocks of every contact candidate;
-// slots_out is where the slots of that block go (nullptr while declaring the pattern).
-template <class Visit>
-void visit_contact_blocks(Model& m, std::vector<CableShapeContactData>& shape_pairs,
-                          std::vector<CableCableContactData>& cable_pairs, Visit&& visit) {
-  for (CableShapeContactData& c : shape_pairs) {
-    const ContactShapeData& shape = m.shapes()[c.shape];
-    if (shape.owner != ContactShapeData::Owner::body) continue;  // ground/frame: element block only
-    const CableData& cable = m.cables()[c.cable];
-    c.element_body.resize(c.count);
-    c.body_element.resize(c.count);
-    for (Index j = 0; j < c.count; ++j) {
-      const Index e = cable.first_coordinate + 6 * (c.first + j);
-      visit(e, shape.body_coordinate, c.element_body[j]);
-      visit(shape.body_coordinate, e, c.body_element[j]);
-    }
-  }
-  for (CableCableContactData& c : cable_pairs) {
-    const CableData& a = m.cables()[c.cable_a];
-    const CableData& b = m.cables()[c.cable_b];
-    const Index na = c.count_a, nb = c.count_b;
-    c.ab.resize(na * nb);
-    c.ba.resize(na * nb);
-    for (Index i = 0; i < na; ++i)
-      for (Index j = 0; j < nb; ++j) {
-        const Index ea = a.first_coordinate + 6 * (c.first_a + i),
-                    eb = b.first_coordinate + 6 * (c.first_b + j);
-        visit(ea, eb, c.ab[i * nb + j]);
-        visit(eb, ea, c.ba[i * nb + j]);
-      }
-  }
-}
-
 }  // namespace
 
 void ModelBuilder::build_pattern_and_slots(Model& m) {
@@ -107,8 +67,8 @@ void ModelBuilder::build_pattern_and_slots(Model& m) {
   // Point forces do not depend on q or v: no matrix entries.
   declare_forces(m.torques_, p);
   declare_forces(m.drives_, p);
-  visit_contact_blocks(m, m.cable_shape_contacts_, m.cable_cable_contacts_,
-                       [&](Index rb, Index cb, BlockSlots&) { visit_coupling_block(rb, cb, add); });
+  // Contact coupling blocks are not reserved here: ContactPattern adds those of the pairs that
+  // are near (DESIGN §5).
   p.freeze();
 
   for (const CableData& c : m.cables_) {
@@ -140,12 +100,6 @@ void ModelBuilder::build_pattern_and_slots(Model& m) {
   collect_forces(m.springs_, p);
   collect_forces(m.torques_, p);
   collect_forces(m.drives_, p);
-  visit_contact_blocks(m, m.cable_shape_contacts_, m.cable_cable_contacts_,
-                       [&](Index rb, Index cb, BlockSlots& out) {
-                         int k = 0;
-                         visit_coupling_block(
-                             rb, cb, [&](Index r, Index col) { out[k++] = p.slot(r, col); });
-                       });
 }
 
 }  // namespace ancf

@@ -1,9 +1,26 @@
 #include "ancf/system/multibody_problem.hpp"
 
-namespace ancf {
+#include <chrono>
 
-MultibodyProblem::MultibodyProblem(const Model& model)
-    : model_(model), state_(SystemState::initial(model)), workspace_(model) {}
+namespace ancf {
+namespace {
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+}  // namespace
+
+MultibodyProblem::MultibodyProblem(const Model& model, ContactPatternOptions contact)
+    : model_(model),
+      state_(SystemState::initial(model)),
+      workspace_(model),
+      contact_(model, contact) {}
+
+bool MultibodyProblem::update_pattern(double t, std::span<const double> q,
+                                      std::span<const double> v, double horizon) {
+  load(t, q, v, {}, {});
+  return contact_.update(state_, horizon, workspace_);
+}
 
 void MultibodyProblem::load(double t, std::span<const double> q, std::span<const double> v,
                             std::span<const double> a, std::span<const double> lambda) {
@@ -18,17 +35,21 @@ void MultibodyProblem::load(double t, std::span<const double> q, std::span<const
 void MultibodyProblem::residual(double t, std::span<const double> q, std::span<const double> v,
                                 std::span<const double> a, std::span<const double> lambda,
                                 std::span<double> r) {
+  const auto start = Clock::now();
   load(t, q, v, a, lambda);
   assemble_residual(model_, state_, 1.0, workspace_, r);
+  residual_seconds_ += seconds_since(start);
 }
 
 void MultibodyProblem::iteration_matrix(double t, std::span<const double> q,
                                         std::span<const double> v, std::span<const double> a,
                                         std::span<const double> lambda, const MatrixWeights& w,
                                         std::span<double> values) {
+  const auto start = Clock::now();
   load(t, q, v, a, lambda);
-  assemble_iteration_matrix(model_, state_, IterationWeights{w.w_q, w.w_v, w.w_a, 1.0}, workspace_,
-                            values);
+  assemble_iteration_matrix(model_, state_, IterationWeights{w.w_q, w.w_v, w.w_a, 1.0}, contact_,
+                            workspace_, values);
+  matrix_seconds_ += seconds_since(start);
 }
 
 void MultibodyProblem::constraints(double t, std::span<const double> q, std::span<double> phi) {

@@ -2,7 +2,10 @@
 
 namespace ancf {
 
-StaticModelProblem::StaticModelProblem(const Model& model) : model_(model), workspace_(model) {
+StaticModelProblem::StaticModelProblem(const Model& model)
+    : model_(model),
+      workspace_(model),
+      contact_(model, ContactPatternOptions{.policy = ContactPatternPolicy::all}) {
   state_ = SystemState::initial(model);
   state_.v.setZero();  // statics: no damping forces
   state_.a.resize(0);  // and no inertia term
@@ -24,7 +27,7 @@ void StaticModelProblem::jacobian(std::span<const double> y, double load_factor,
                                   std::span<double> values) {
   load_state(y);
   assemble_iteration_matrix(model_, state_, IterationWeights{1.0, 0.0, 0.0, load_factor},
-                            workspace_, values);
+                            contact_, workspace_, values);
 }
 
 VecX StaticModelProblem::initial_guess() const {

@@ -24,8 +24,19 @@ class DaeProblem {
 
   /// Number of unknowns N (= number of residual rows).
   [[nodiscard]] virtual Index size() const = 0;
-  /// Fixed pattern of J = ∂F/∂y + c_j ∂F/∂y' (frozen, never changes while integrating).
+  /// Frozen pattern of J = ∂F/∂y + c_j ∂F/∂y'. It changes only in update_jacobian_pattern();
+  /// the reference stays valid (the object is updated in place).
   [[nodiscard]] virtual const SparsityPattern& jacobian_pattern() const = 0;
+
+  /// Bring jacobian_pattern() up to date for a Jacobian at (t, y) that is to serve for about
+  /// `horizon` seconds (a contact pattern follows the pairs that are near, DESIGN §5). Returns
+  /// true if the pattern changed: the integrator then re-sizes its matrix and re-runs the
+  /// symbolic analysis. Called before every Jacobian evaluation; allocates only when the pattern
+  /// changes. Default: the pattern never changes.
+  virtual bool update_jacobian_pattern(double /*t*/, std::span<const double> /*y*/,
+                                       double /*horizon*/) {
+    return false;
+  }
 
   /// F(t, y, y') into `r` (all spans of size()). May throw: std::domain_error or SolverError mean
   /// "not evaluable here" (the integrator retries with a smaller step), anything else is fatal.

@@ -8,13 +8,15 @@
 
 namespace ancf {
 
-/// Sparse LU for a square matrix whose pattern is fixed at construction. The symbolic analysis
-/// (block triangular form + fill-reducing ordering) runs once, in the constructor. factor()
+/// Sparse LU for a square matrix. The symbolic analysis (block triangular form + fill-reducing
+/// ordering) runs in the constructor and again in analyze(), after the owner of `pattern` has
+/// changed it (the contact pattern of DESIGN §5 follows the near pairs). factor()
 /// performs a full numeric factorization with pivoting the first time and a cheaper refactor
 /// (same pivot order) afterwards; refactor_threshold guards against pivot growth: if KLU's
 /// reciprocal pivot growth estimate drops below it, a full factorization with fresh pivoting is done.
 ///
-/// Ownership: keeps a reference to `pattern`, which must outlive the solver.
+/// Ownership: keeps a reference to `pattern`, which must outlive the solver; after the pattern
+/// object is changed, call analyze() before the next factor().
 class KluSolver {
  public:
   explicit KluSolver(const SparsityPattern& pattern);
@@ -25,6 +27,9 @@ class KluSolver {
   /// Numeric factorization of the matrix with the given values (one per pattern non-zero).
   /// Throws SolverError if the matrix is singular; the message gives the column KLU stopped at.
   void factor(std::span<const double> values);
+  /// Symbolic analysis of the pattern's current arrays (its size and non-zeros may have changed);
+  /// drops the numeric factorization, so the next factor() pivots afresh. Throws SolverError.
+  void analyze();
   /// Force the next factor() to pivot afresh (use when values changed by orders of magnitude).
   void reset_pivoting() { pivots_valid_ = false; }
   /// Solve A x = b in place. Precondition: factor() succeeded.
@@ -35,6 +40,13 @@ class KluSolver {
 
   [[nodiscard]] int full_factorizations() const { return full_factorizations_; }
   [[nodiscard]] int refactorizations() const { return refactorizations_; }
+  /// Column at which the last failed factorization found the matrix singular, or −1.
+  [[nodiscard]] Index singular_column() const { return singular_column_; }
+  /// Symbolic analyses (the constructor's and every analyze()).
+  [[nodiscard]] int symbolic_analyses() const { return symbolic_analyses_; }
+  /// Wall time spent in analysis + numeric factorization, and in solves [s] (cumulative).
+  [[nodiscard]] double factor_seconds() const { return factor_seconds_; }
+  [[nodiscard]] double solve_seconds() const { return solve_seconds_; }
 
  private:
   struct Impl;
@@ -43,6 +55,10 @@ class KluSolver {
   bool pivots_valid_ = false;
   int full_factorizations_ = 0;
   int refactorizations_ = 0;
+  int symbolic_analyses_ = 0;
+  Index singular_column_ = -1;
+  double factor_seconds_ = 0.0;
+  double solve_seconds_ = 0.0;
 };
 
 }  // namespace ancf

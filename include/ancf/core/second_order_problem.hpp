@@ -39,8 +39,20 @@ class SecondOrderProblem {
   /// n + m.
   [[nodiscard]] Index system_size() const { return coordinate_count() + multiplier_count(); }
 
-  /// Frozen (n + m)² pattern of [w_q K + w_v D + w_a M, Φ_qᵀ; Φ_q, 0]; never changes.
+  /// Frozen (n + m)² pattern of [w_q K + w_v D + w_a M, Φ_qᵀ; Φ_q, 0]. It changes only in
+  /// update_pattern(); the reference stays valid (the object is updated in place).
   [[nodiscard]] virtual const SparsityPattern& iteration_pattern() const = 0;
+
+  /// Bring iteration_pattern() up to date for matrices evaluated at (t, q, v) that are to serve
+  /// for about `horizon` seconds (a contact pattern follows the pairs that are near, DESIGN §5).
+  /// Returns true if the pattern changed: the caller then sizes its value arrays to the new
+  /// nonzeros() and re-runs the symbolic analysis (KluSolver::analyze) before it factorizes.
+  /// Integrators call it before every matrix evaluation; it allocates only when the pattern
+  /// changes. Default: the pattern never changes.
+  virtual bool update_pattern(double /*t*/, std::span<const double> /*q*/,
+                              std::span<const double> /*v*/, double /*horizon*/) {
+    return false;
+  }
 
   /// r (n + m) = [M a + F(q, v, t) − Q(q, v, t) + Φ_qᵀλ; Φ(q, t)]. q, v, a: n; λ: m.
   virtual void residual(double t, std::span<const double> q, std::span<const double> v,

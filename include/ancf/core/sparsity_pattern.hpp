@@ -30,6 +30,8 @@ class SparsityPattern {
 
   /// Position of (row, col) in the value array. Throws std::out_of_range if absent.
   [[nodiscard]] Index slot(Index row, Index col) const;
+  /// Position of (row, col) in the value array, or −1 if the entry is not in the pattern.
+  [[nodiscard]] Index find(Index row, Index col) const;
 
   [[nodiscard]] Index nonzeros() const { return static_cast<Index>(row_index_.size()); }
   [[nodiscard]] const std::vector<Index>& column_start() const { return column_start_; }

@@ -12,6 +12,7 @@
 
 #include "ancf/io/scene_error.hpp"
 #include "ancf/solvers/generalized_alpha.hpp"
+#include "ancf/system/contact_pattern.hpp"
 #include "ancf/system/model.hpp"
 
 namespace ancf {
@@ -29,6 +30,8 @@ struct IntegratorSettings {
   double ida_atol_position = -1.0, ida_atol_velocity = -1.0, ida_atol_multiplier = -1.0;
   double max_step = 0.0;           ///< IDA step limit [s]; 0: none
   int max_order = 5;               ///< IDA BDF order limit, 1 … 5
+  bool ida_sundials_klu = false;   ///< IDA: SUNDIALS' SUNLinSol_KLU instead of the project's
+  bool ida_slope_position_scale = false;  ///< IDA: SlopeScale::position_equivalent tolerances
   double step = 1e-3;              ///< generalized-α step size h [s] > 0
   double rho_infinity = 0.8;       ///< generalized-α spectral radius at infinity, [0, 1]
   bool stabilized_index2 = false;  ///< generalized-α formulation (false: index 3, needs ρ∞ < 1)
@@ -43,6 +46,9 @@ struct IntegratorSettings {
   GeneralizedAlphaStepChange ga_step_change = GeneralizedAlphaStepChange::automatic;
   bool ga_refresh_on_contact_change = false;
   int ga_max_damping_halvings = 0;  ///< damped Newton (GeneralizedAlphaOptions), 0: off
+  /// Contact coupling blocks in the iteration matrix: those of the pairs that are near (default)
+  /// or every candidate's (the first design, kept to measure against).
+  ContactPatternPolicy contact_pattern = ContactPatternPolicy::near;
 };
 
 /// One probe of the output time series (probes.csv columns, docs/scenes.md).

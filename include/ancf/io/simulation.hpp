@@ -16,6 +16,9 @@ namespace ancf {
 
 /// Deterministic counters of a run (name, value), in the integrator's own terms.
 using SimulationCounters = std::vector<std::pair<std::string, long>>;
+/// Where the wall time of a run went (name, seconds): element kernels, contact, the rest of the
+/// assembly, factorization, solves, the integrator's own work. Timings are not deterministic.
+using SimulationTimings = std::vector<std::pair<std::string, double>>;
 
 struct SimulationHooks {
   /// Called at t = 0 (consistent initial values) and at every output time with t, q, v, a = q''
@@ -34,5 +37,9 @@ struct SimulationHooks {
 /// end at settings.t_end.
 void simulate(const Model& model, const IntegratorSettings& settings, const std::vector<double>& times,
               const SimulationHooks& hooks, SimulationCounters& counters);
+/// The same, also filling `timings` (also when a solver failure is thrown).
+void simulate(const Model& model, const IntegratorSettings& settings, const std::vector<double>& times,
+              const SimulationHooks& hooks, SimulationCounters& counters,
+              SimulationTimings& timings);
 
 }  // namespace ancf

@@ -168,14 +168,19 @@ struct GeneralizedAlphaStatistics {
   long active_set_refreshes = 0;  ///< matrices rebuilt because the active contact set changed
   long damped_iterations = 0;     ///< Newton trial points halved back (max_damping_halvings)
   long restarts = 0;              ///< starting procedures (initialize and every change of h)
+  long pattern_changes = 0;       ///< changes of the problem's pattern (contact pairs near)
+  long symbolic_analyses = 0;     ///< KLU symbolic analyses after initialize (both matrices)
+  double factor_seconds = 0.0;    ///< wall time in KLU analysis + factorization [s]
+  double solve_seconds = 0.0;     ///< wall time in KLU solves [s]
   double min_step = 0.0;          ///< smallest step taken [s]
   double max_step = 0.0;          ///< largest step taken [s]
   double wall_seconds = 0.0;      ///< inside initialize/step/advance_to
 };
 
-/// Owns the KLU symbolic analysis of problem.iteration_pattern() (done once, in the
-/// constructor) and the state (t, q, v, q'', a, λ). No heap allocation per step.
-/// Ownership: keeps a reference to `problem`, which must outlive the stepper.
+/// Owns the KLU symbolic analysis of problem.iteration_pattern() (in the constructor, and again
+/// whenever problem.update_pattern() reports a change: it is asked before every matrix
+/// evaluation with the step size as horizon) and the state (t, q, v, q'', a, λ). No heap allocation
+/// per step. Ownership: keeps a reference to `problem`, which must outlive the stepper.
 class GeneralizedAlphaStepper {
  public:
   /// Throws std::invalid_argument for bad options, and for index 3 with ρ∞ = 1 (unstable).
@@ -226,6 +231,9 @@ class GeneralizedAlphaStepper {
   Outcome newton(double t1, double h);
   void predict(double h);
   void refresh_matrix(double t1, double h);  // throws SolverError if singular
+  void update_pattern(double t, const VecX& q, const VecX& v, double h);
+  void factor(KluSolver& klu, long& revision, const VecX& values);
+  void update_factorization_counters();
   void refresh_projector(double t, const VecX& q);
   void project_positions(double t, VecX& q, int max_iterations);
   void project_velocities(double t, const VecX& q, VecX& v);
@@ -243,7 +251,6 @@ class GeneralizedAlphaStepper {
   [[nodiscard]] bool adaptive() const {
     return options_.stepping == GeneralizedAlphaStepping::error_controlled;
   }
-  void update_factorization_counters();
 
   SecondOrderProblem& problem_;
   GeneralizedAlphaOptions options_;
@@ -283,8 +290,13 @@ class GeneralizedAlphaStepper {
   double step_max_rate_ = 0.0;          // largest contraction rate θ seen in the current step
   StepController controller_;           // error-controlled stepping
   double last_error_ = 0.0;             // estimate of the last accepted step
+  VecX mass_values_;                    // [M Φ_qᵀ; Φ_q 0] values for M·e (filtered estimate)
+  long mass_revision_ = -1;             // pattern revision mass_values_ was assembled in
   std::uint64_t matrix_signature_ = 0;  // active_set_signature() when the matrix was built
-  long klu_base_[4] = {0, 0, 0, 0};     // KLU counters at initialize()
+  long klu_base_[5] = {0, 0, 0, 0, 0};  // KLU counters at initialize()
+  double klu_seconds_base_[2] = {0.0, 0.0};  // KLU factor and solve seconds at initialize()
+  long pattern_revision_ = 0;                // changes of problem.iteration_pattern() seen so far
+  long klu_revision_ = 0, projector_revision_ = 0;  // revision each solver was analysed for
   GeneralizedAlphaStatistics stats_;
 };
 

@@ -7,12 +7,17 @@
 //    them makes IDA crawl.
 //  * Consistent initial values come from the problem (DaeProblem::consistent_values), not from
 //    IDACalcIC, which returns success with a wrong λ₀ when v₀ ≠ 0.
-//  * KLU's symbolic analysis runs at the first factorization after (re)initialization; later
-//    setups refactor with the first pivot order. SUNDIALS 6.4 zeroes the sparse matrix, index
-//    arrays included, before every Jacobian call, so the cached pattern is copied in each call.
-//    When c_j has changed by more than klu_repivot_ratio since the last pivoting (the step size
-//    changed by orders of magnitude, so the balance of c_j M against K did too), KLU is
-//    re-initialized (SUNLinSol_KLUReInit) and pivots afresh.
+//  * The linear solver is the project's KluSolver behind a SUNLinearSolver (IdaLinearSolver::
+//    ancf_klu, klu_linear_solver.hpp): refactorization in the first pivot order guarded by KLU's
+//    pivot growth. SUNDIALS' own SUNLinSol_KLU (IdaLinearSolver::sundials_klu, kept to measure
+//    against) also refactorizes, but then re-factorizes from scratch whenever its condition
+//    estimate exceeds 1/ε^(2/3), which the GGL Jacobian of a stiff scene always does.
+//    The symbolic analysis runs once, and again when the problem's pattern changes
+//    (DaeProblem::update_jacobian_pattern, asked before every Jacobian evaluation). SUNDIALS 6.4
+//    zeroes the sparse matrix, index arrays included, before every Jacobian call, so the pattern
+//    is copied in each call. When c_j has changed by more than klu_repivot_ratio since the last
+//    pivoting (the step size changed by orders of magnitude, so the balance of c_j M against K
+//    did too), KLU pivots afresh.
 //  * C callbacks never let an exception cross into C: std::domain_error, SolverError and
 //    non-finite residuals are recoverable (+1: IDA retries with a smaller step), anything else is
 //    fatal (−1) and is rethrown after IDA returns.
@@ -32,6 +37,9 @@ namespace ancf {
 
 /// Largest relative tolerance IdaIntegrator accepts (see IdaOptions::rtol).
 inline constexpr double kIdaMaxRtol = 1e-2;
+
+/// Who factorizes IDA's Jacobian (see the file comment).
+enum class IdaLinearSolver { ancf_klu, sundials_klu };
 
 struct IdaOptions {
   /// Relative tolerance, in (0, kIdaMaxRtol]. Looser values are refused: the SUNDIALS IDA guide
@@ -56,6 +64,7 @@ struct IdaOptions {
   long max_steps = 1'000'000;  ///< steps per call of advance() (IDASetMaxNumSteps)
   int max_nonlinear_iterations = 4, max_convergence_failures = 10, max_error_test_failures = 10;
   double klu_repivot_ratio = 1e3;  ///< see the file comment; ≤ 1 disables re-pivoting
+  IdaLinearSolver linear_solver = IdaLinearSolver::ancf_klu;
   /// Per event function: +1 report only increasing, −1 only decreasing zero crossings, 0 both.
   /// Empty: both for all. (After a bounce the state sits just past the root; a direction keeps
   /// the reversed motion from re-triggering the event at once.)
@@ -67,9 +76,18 @@ struct IdaStatistics {
   long steps = 0, residual_evaluations = 0, jacobian_evaluations = 0, linear_solver_setups = 0;
   long nonlinear_iterations = 0, error_test_failures = 0, convergence_failures = 0;
   long root_evaluations = 0, klu_repivots = 0, reinitializations = 0;
+  long pattern_changes = 0;    ///< Jacobian pattern changes (contact pairs near, DESIGN §5)
+  /// ancf_klu only (0 with sundials_klu): numeric factorizations with fresh pivoting, and in the
+  /// first pivot order; wall time in KLU analysis + factorization and in solves [s].
+  long full_factorizations = 0, refactorizations = 0;
+  double factor_seconds = 0.0, solve_seconds = 0.0;
+  long symbolic_analyses = 0;  ///< KLU symbolic analyses (first setup, re-pivotings, changes)
   int last_order = 0;
   double last_step = 0.0;  ///< [s]
   double wall_time = 0.0;  ///< [s]
+  /// Wall time inside the residual and Jacobian callbacks [s]; the rest of wall_time is IDA's
+  /// own work (BDF, Newton, KLU factorization and solves).
+  double residual_seconds = 0.0, jacobian_seconds = 0.0;
   /// Two-column text table, one counter per line.
   [[nodiscard]] std::string table() const;
 };
@@ -140,6 +158,10 @@ class IdaIntegrator {
   [[nodiscard]] std::span<const double> yp() const;
   [[nodiscard]] IdaStatistics statistics() const;
   [[nodiscard]] const IdaOptions& options() const { return options_; }
+  /// The differential unknown with the largest weighted local error estimate of the last step
+  /// (IDAGetEstLocalErrors × error weights, 1 = at the tolerance), and that value; −1 if none.
+  /// A diagnostic: which unknowns limit the step size (allocates).
+  [[nodiscard]] Index worst_local_error(double& weighted) const;
 
  private:
   struct Impl;

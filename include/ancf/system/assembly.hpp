@@ -11,6 +11,9 @@
 
 namespace ancf {
 
+struct ContactCoupling;
+class ContactPattern;
+
 /// State at time t: coordinates q, velocities v = q', accelerations a = q'' and multipliers λ.
 /// Sizes: q, v, a: model.coordinate_count(); λ: model.multiplier_count().
 struct SystemState {
@@ -39,6 +42,16 @@ struct Workspace {
   /// Hash of the active contact samples (pair and elements of each, in visiting order) of the
   /// last assemble_residual; 0 when none is active.
   std::uint64_t active_contact_signature = 0;
+  /// Coupling-block slots of the current contact pattern (set by assembly into a ContactPattern;
+  /// nullptr: the model's own pattern, which holds no coupling blocks).
+  const ContactCoupling* coupling = nullptr;
+  /// Active samples whose coupling blocks the pattern did not hold (cumulative): their ∂Q/∂P
+  /// coupling terms were left out of a matrix. Zero when the pattern was updated at the state the
+  /// matrix is assembled at (ContactPattern::update).
+  long missing_coupling_samples = 0;
+  /// Wall time [s] in the cable element kernels (forces and matrices) and in the contact
+  /// detection and kernels, cumulative: the time shares of a run.
+  double element_seconds = 0.0, contact_seconds = 0.0;
   explicit Workspace(const Model& model);
   /// Frame kinematics at t (recomputed only when t changes).
   std::span<const FrameKinematics> frames_at(const Model& model, double t);
@@ -68,11 +81,20 @@ void assemble_iteration_matrix(const Model& model, const SystemState& state,
                                const IterationWeights& weights, Workspace& ws,
                                std::span<double> values);
 
+/// The same matrix in contact.pattern() (the model's pattern plus the near contact coupling
+/// blocks; `values` has contact.pattern().nonzeros() entries). Call contact.update() at (or
+/// shortly before) `state` first, so that the pattern holds every block in contact.
+void assemble_iteration_matrix(const Model& model, const SystemState& state,
+                               const IterationWeights& weights, const ContactPattern& contact,
+                               Workspace& ws, std::span<double> values);
+
 /// Destination of the iteration-matrix entries inside a larger matrix whose ∂/∂q and ∂/∂v blocks
-/// are separate (the GGL Jacobian, ggl_problem.hpp). Entry s of model.pattern() adds its position
-/// part (w_q K with the geometric stiffness, and the unweighted Φ_q, Φ_qᵀ) to values[position[s]]
-/// and its velocity part (w_v D + w_a M) to values[velocity[s]]. Both spans have
-/// pattern().nonzeros() entries; velocity[s] is read only for entries of the n×n dynamic block.
+/// are separate (the GGL Jacobian, ggl_problem.hpp). Assembly slot s (model.pattern() entries,
+/// then the coupling entries of `coupling`, see contact_pattern.hpp) adds its position part (w_q K
+/// with the geometric stiffness, and the unweighted Φ_q, Φ_qᵀ) to values[position[s]] and its
+/// velocity part (w_v D + w_a M) to values[velocity[s]]. Both spans have one entry per assembly
+/// slot; velocity[s] is read only for entries of the n×n dynamic block. `coupling` (nullptr: none)
+/// gives the coupling blocks' slots.
 struct MatrixScatter {
   std::span<const Index> position;
   std::span<const Index> velocity;
@@ -82,7 +104,8 @@ struct MatrixScatter {
 /// the same code path, so both matrices agree term by term. Each cable element kernel runs once.
 void add_iteration_matrix(const Model& model, const SystemState& state,
                           const IterationWeights& weights, const MatrixScatter& scatter,
-                          Workspace& ws, std::span<double> values);
+                          const ContactCoupling* coupling, Workspace& ws,
+                          std::span<double> values);
 
 /// Φ_q v + Φ_t (size m): the velocity-level constraint.
 void assemble_velocity_constraint(const Model& model, const SystemState& state, Workspace& ws,

@@ -1,5 +1,5 @@
 // Contact data of a Model (DESIGN §5): named shapes with their owner, and the candidate pairs the
-// scene declared, each with the value slots its blocks occupy in the fixed pattern.
+// scene declared. The coupling blocks of the pairs that are near live in a ContactPattern.
 #pragma once
 
 #include <array>
@@ -23,7 +23,7 @@ struct ContactShapeData {
 };
 
 /// Elements [first, first + count) of a cable that a contact pair samples (count < 0: to the end).
-/// Only these are candidates: the pattern reserves their coupling blocks and nothing else.
+/// Only these are candidates: their coupling blocks are the ones a ContactPattern may hold.
 struct ElementRange {
   Index first = 0;
   Index count = -1;
@@ -34,27 +34,24 @@ using BlockSlots = std::array<Index, 144>;
 
 /// Cable `cable` against shape `shape`: `samples` points per element at ξ = (k + ½)/samples, each
 /// weighing l/samples, on elements [first, first + count). For a body-owned shape, element
-/// first + j couples to the body through element_body[j] (element rows, body columns) and
-/// body_element[j] (the transpose block).
+/// first + j couples to the body (ContactCoupling::shape_block).
 struct CableShapeContactData {
   std::string name;
   Index cable = 0, shape = 0;
   Index first = 0, count = 0;  ///< candidate elements (resolved range)
   ContactLaw law;
   int samples = 1;
-  std::vector<BlockSlots> element_body, body_element;
 };
 
 /// Samples of cable a (elements [first_a, first_a + count_a)) against the closest point of cable b
-/// (elements [first_b, first_b + count_b)). Element pair (first_a + i, first_b + j) couples through
-/// ab[i·count_b + j] (rows of a's element, columns of b's) and ba[i·count_b + j] (transpose).
+/// (elements [first_b, first_b + count_b)). Element pair (first_a + i, first_b + j) couples
+/// through ContactCoupling::cable_block[pair][i·count_b + j].
 struct CableCableContactData {
   std::string name;
   Index cable_a = 0, cable_b = 0;
   Index first_a = 0, count_a = 0, first_b = 0, count_b = 0;  ///< candidate elements
   ContactLaw law;
   int samples = 1;
-  std::vector<BlockSlots> ab, ba;
 };
 
 }  // namespace ancf

@@ -22,19 +22,31 @@
 
 #include "ancf/core/dae_problem.hpp"
 #include "ancf/system/assembly.hpp"
+#include "ancf/system/contact_pattern.hpp"
 
 namespace ancf {
 
 /// Physical scales that set the absolute tolerances (DaeProblem::variable_scale). Zero entries
 /// are derived from the model: length L from the extent of the initial configuration, energy E
 /// from the constant loads over L, the initial kinetic and strain energy, velocity √(2E/m_total),
-/// time T = L/velocity. Coordinates get L (positions) or 1 (slopes, body axes), velocities those
-/// over T, a multiplier λ_i the force E/g_i and μ_i the rate s_i²/(T g_i), with g_i = ‖Φ_q,i S‖ the
-/// gradient of row i in scaled coordinates and s_i the largest coordinate scale in the row.
+/// time T = L/velocity. Coordinates get L (positions) or 1 (slopes, body axes; see SlopeScale),
+/// velocities those over T, a multiplier λ_i the force E/g_i and μ_i the rate s_i²/(T g_i), with
+/// g_i = ‖Φ_q,i S‖ the gradient of row i in scaled coordinates and s_i the largest coordinate scale
+/// in the row. Scale of a cable's nodal slope r' (and of its rate, over T).
+enum class SlopeScale {
+  unit,  ///< 1 (dimensionless): a slope error of rtol is allowed, whatever the element length
+  /// L/(4l/27): the slope error that moves centreline points as much as a position error of the
+  /// scale L (a slope enters positions through S2, S4, max |S2| = 4l/27). On slack ropes with
+  /// EI = 0 the end slopes carry no stiffness and wander; unit scales made their rates limit every
+  /// IDA step of the capture scene (ancf-study-ida-capture).
+  position_equivalent,
+};
+
 struct GglScales {
   double length = 0.0;  ///< L [m]
   double energy = 0.0;  ///< E [J]
   double time = 0.0;    ///< T [s]
+  SlopeScale slope = SlopeScale::unit;
 };
 
 /// Ownership: keeps a reference to `model`, which must outlive the problem.
@@ -43,10 +55,13 @@ class GglProblem final : public DaeProblem {
   /// Event functions g(state) (roots located by the integrator): the state has t, q, v, a = v', λ.
   using EventFunction = std::function<void(const SystemState& state, std::span<double> g)>;
 
-  explicit GglProblem(const Model& model, GglScales scales = {});
+  explicit GglProblem(const Model& model, GglScales scales = {},
+                      ContactPatternOptions contact = {});
 
   [[nodiscard]] Index size() const override { return 2 * n_ + 2 * m_; }
   [[nodiscard]] const SparsityPattern& jacobian_pattern() const override { return pattern_; }
+  /// ContactPattern::update at (t, q, v) of y; rebuilds the GGL pattern when it changed.
+  bool update_jacobian_pattern(double t, std::span<const double> y, double horizon) override;
   void residual(double t, std::span<const double> y, std::span<const double> yp,
                 std::span<double> r) override;
   void jacobian(double t, std::span<const double> y, std::span<const double> yp, double c_j,
@@ -72,6 +87,9 @@ class GglProblem final : public DaeProblem {
               SystemState& state) const;
   [[nodiscard]] const Model& model() const { return model_; }
   [[nodiscard]] const GglScales& scales() const { return scales_; }
+  [[nodiscard]] const ContactPattern& contact_pattern() const { return contact_; }
+  /// The scratch workspace, for its counters (contact samples, kernel times).
+  [[nodiscard]] const Workspace& workspace() const { return workspace_; }
   /// First index of each part of y.
   [[nodiscard]] Index velocity_offset() const { return n_; }
   [[nodiscard]] Index lambda_offset() const { return 2 * n_; }
@@ -85,9 +103,9 @@ class GglProblem final : public DaeProblem {
   Index n_, m_;
   GglScales scales_;
   SparsityPattern pattern_;
-  // Slot maps from model.pattern() entries into pattern_ (−1: none): the iteration-matrix parts
-  // (MatrixScatter), and the GGL-only copies of Φ_q (rows F_Ψ), Φ_qᵀ (rows F_q) and of the
-  // geometric-stiffness positions (μ term in rows F_q).
+  // Slot maps from assembly slots (contact_pattern.hpp) into pattern_ (−1: none): the
+  // iteration-matrix parts (MatrixScatter), and the GGL-only copies of Φ_q (rows F_Ψ), Φ_qᵀ (rows
+  // F_q) and of the geometric-stiffness positions (μ term in rows F_q).
   std::vector<Index> position_slot_, velocity_slot_;
   std::vector<Index> psi_q_slot_, psi_v_slot_, mu_slot_, mu_geometric_slot_;
   std::vector<Index> identity_q_slot_, identity_v_slot_;  // (F_q, q) and (F_q, v) diagonals
@@ -95,6 +113,7 @@ class GglProblem final : public DaeProblem {
   std::vector<double> row_gradient_;  // g_i of the scale definition
   SystemState state_;
   Workspace workspace_;
+  ContactPattern contact_;
   int event_count_ = 0;
   EventFunction events_;
 };

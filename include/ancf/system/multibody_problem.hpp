@@ -5,23 +5,29 @@
 
 #include "ancf/core/second_order_problem.hpp"
 #include "ancf/system/assembly.hpp"
+#include "ancf/system/contact_pattern.hpp"
 
 namespace ancf {
 
 /// q, v, a = q'' in the model's coordinate numbering, λ its constraint rows; SI units.
 /// residual = [M a + F(q, v) − Q(q, v, t) + Φ_qᵀλ; Φ(q, t)] (assemble_residual with load factor 1),
-/// iteration_matrix = assemble_iteration_matrix in model.pattern().
-/// Ownership: keeps a reference to `model`, which must outlive the problem; owns a Workspace and
-/// a SystemState used as scratch (no heap allocation per call).
+/// iteration_matrix = assemble_iteration_matrix in the contact pattern (the model's pattern plus
+/// the coupling blocks of the contact pairs that are near, contact_pattern.hpp).
+/// Ownership: keeps a reference to `model`, which must outlive the problem; owns a Workspace, a
+/// ContactPattern and a SystemState used as scratch (no heap allocation per call while the
+/// pattern does not change).
 class MultibodyProblem final : public SecondOrderProblem {
  public:
-  explicit MultibodyProblem(const Model& model);
+  explicit MultibodyProblem(const Model& model, ContactPatternOptions contact = {});
 
   [[nodiscard]] Index coordinate_count() const override { return model_.coordinate_count(); }
   [[nodiscard]] Index multiplier_count() const override { return model_.multiplier_count(); }
   [[nodiscard]] const SparsityPattern& iteration_pattern() const override {
-    return model_.pattern();
+    return contact_.pattern();
   }
+  /// ContactPattern::update at (t, q, v).
+  bool update_pattern(double t, std::span<const double> q, std::span<const double> v,
+                      double horizon) override;
 
   void residual(double t, std::span<const double> q, std::span<const double> v,
                 std::span<const double> a, std::span<const double> lambda,
@@ -50,6 +56,12 @@ class MultibodyProblem final : public SecondOrderProblem {
   }
 
   [[nodiscard]] const Model& model() const { return model_; }
+  [[nodiscard]] const ContactPattern& contact_pattern() const { return contact_; }
+  /// The scratch workspace, for its counters (contact samples, kernel times).
+  [[nodiscard]] const Workspace& workspace() const { return workspace_; }
+  /// Wall time spent in residual() and in iteration_matrix() [s], cumulative.
+  [[nodiscard]] double residual_seconds() const { return residual_seconds_; }
+  [[nodiscard]] double matrix_seconds() const { return matrix_seconds_; }
 
  private:
   // Copy the given vectors into state_ (same sizes, so no allocation after the first call).
@@ -58,6 +70,8 @@ class MultibodyProblem final : public SecondOrderProblem {
   const Model& model_;
   SystemState state_;
   Workspace workspace_;
+  ContactPattern contact_;
+  double residual_seconds_ = 0.0, matrix_seconds_ = 0.0;
 };
 
 }  // namespace ancf

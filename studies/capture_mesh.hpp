@@ -1,0 +1,23 @@
+// The capture scene's rope mesh as a study parameter (ancf-capture --elements, the capture cases
+// of ancf-study-scaling): every rope gets `elements` elements and the rope–rope candidate ranges
+// follow (the middle halves of both ropes, as in the scene file at 24 elements).
+#pragma once
+
+#include <toml++/toml.h>
+#include <cstdint>
+
+namespace ancf::studies {
+
+inline void set_capture_rope_elements(toml::table& root, long elements) {
+  for (toml::node& c : *root["cable"].as_array())
+    c.as_table()->insert_or_assign("elements", static_cast<int64_t>(elements));
+  for (toml::node& c : *root["contact"].as_array()) {
+    toml::table& t = *c.as_table();
+    if (!t.contains("other_cable")) continue;
+    const toml::array range{static_cast<int64_t>(elements / 4), static_cast<int64_t>(elements / 2)};
+    t.insert_or_assign("elements", range);
+    t.insert_or_assign("other_elements", range);
+  }
+}
+
+}  // namespace ancf::studies
