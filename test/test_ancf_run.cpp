@@ -89,3 +89,28 @@ TEST(AncfRun, MalformedSceneDoesNotStart) {
   EXPECT_EQ(run("run " + scene.string() + " --out " + out.string()), 1);
   EXPECT_FALSE(fs::exists(out));
 }
+
+// Error-controlled generalized-α from the command line: the run completes on the output grid, and
+// run.json records the stepping and its counters; h_max below h_min is refused before the run.
+TEST(AncfRun, GeneralizedAlphaErrorControlledRun) {
+  const fs::path out = fs::temp_directory_path() / "ancf_smoke_genalpha_error_control";
+  fs::remove_all(out);
+  const fs::path scene = kSource / "studies/scenes/cable_drop.toml";
+  ASSERT_EQ(run("run " + scene.string() +
+                " --integrator genalpha --error-control --error-rtol 1e-3 --t-end 0.05 --out " +
+                out.string()),
+            0);
+  EXPECT_EQ(lines(out / "probes.csv").size(), 12u);
+  const std::string json = text(out / "run.json");
+  EXPECT_NE(json.find("\"stepping\": \"error_controlled\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"error_rtol\": 0.001"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"rejected steps\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"error test failures\""), std::string::npos) << json;
+  const fs::path refused = fs::temp_directory_path() / "ancf_smoke_genalpha_hmax";
+  fs::remove_all(refused);
+  EXPECT_EQ(run("run " + scene.string() +
+                " --integrator genalpha --error-control --h-min 1e-3 --h-max 1e-4 --out " +
+                refused.string()),
+            1);
+  EXPECT_FALSE(fs::exists(refused));
+}

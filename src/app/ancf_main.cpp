@@ -26,6 +26,18 @@ int main(int argc, char** argv) {
   run->add_option("--step", run_options.step, "generalized-alpha step / IDA max step [s]")
       ->check(CLI::PositiveNumber);
   run->add_option("--t-end", run_options.t_end, "end time [s]")->check(CLI::PositiveNumber);
+  run->add_flag("--error-control", run_options.error_control,
+                "generalized-alpha: error-controlled variable step (step = first step)");
+  run->add_option("--error-rtol", run_options.error_rtol,
+                  "generalized-alpha local error relative tolerance")
+      ->check(CLI::PositiveNumber);
+  run->add_option("--error-atol", run_options.error_atol,
+                  "generalized-alpha local error absolute tolerance [m]")
+      ->check(CLI::PositiveNumber);
+  run->add_option("--h-min", run_options.h_min, "generalized-alpha smallest step [s]")
+      ->check(CLI::PositiveNumber);
+  run->add_option("--h-max", run_options.h_max, "generalized-alpha largest step [s] (0: none)")
+      ->check(CLI::NonNegativeNumber);
   run->add_option("--out", run_options.out_dir, "output directory (created; default: out)");
   run->add_flag("--progress", run_options.progress,
                 "progress bar even if stderr is not a terminal");

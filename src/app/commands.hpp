@@ -14,11 +14,14 @@ int info_command(const std::string& scene_path);
 /// Command-line overrides of the scene's [integrator] and [output] for `ancf run`.
 struct RunOptions {
   std::string scene_path;
-  std::string integrator;  ///< "" (scene's), "ida" or "genalpha"
-  double rtol = 0.0;       ///< 0: scene's
-  double step = 0.0;       ///< 0: scene's (genalpha step; IDA max step)
-  double t_end = 0.0;      ///< 0: scene's
+  std::string integrator;       ///< "" (scene's), "ida" or "genalpha"
+  double rtol = 0.0;            ///< 0: scene's
+  double step = 0.0;            ///< 0: scene's (genalpha step; IDA max step)
+  double t_end = 0.0;           ///< 0: scene's
   std::string contact_pattern;  ///< "" (scene's), "near" or "all"
+  /// Generalized-α error-controlled stepping and its controller (0: scene's), docs/scenes.md.
+  bool error_control = false;
+  double error_rtol = 0.0, error_atol = 0.0, h_min = 0.0, h_max = -1.0;
   std::string out_dir = "out";
   bool progress = false;  ///< force the progress bar even when stderr is not a terminal
   bool quiet = false;     ///< no summary table

@@ -33,6 +33,11 @@ void apply_overrides(const RunOptions& o, IntegratorSettings& s) {
   if (o.step > 0.0) (s.kind == IntegratorKind::ida ? s.max_step : s.step) = o.step;
   if (o.contact_pattern == "near") s.contact_pattern = ContactPatternPolicy::near;
   if (o.contact_pattern == "all") s.contact_pattern = ContactPatternPolicy::all;
+  if (o.error_control) s.ga_error_controlled = true;
+  if (o.error_rtol > 0.0) s.ga_controller.rtol = o.error_rtol;
+  if (o.error_atol > 0.0) s.ga_controller.atol = o.error_atol;
+  if (o.h_min > 0.0) s.ga_controller.h_min = o.h_min;
+  if (o.h_max >= 0.0) s.ga_controller.h_max = o.h_max;
 }
 
 std::string read_file(const std::string& path) {
@@ -53,6 +58,9 @@ int run_command(const RunOptions& options) {
     if (scene.integrator.kind == IntegratorKind::genalpha &&
         scene.integrator.step > scene.integrator.t_end)
       throw ModelError("--step exceeds t_end");
+    const StepControllerOptions& c = scene.integrator.ga_controller;
+    if (c.h_max > 0.0 && c.h_max < c.h_min)
+      throw ModelError("generalized-alpha h_max (--h-max) is below h_min (--h-min)");
   } catch (const ModelError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 1;
@@ -97,7 +105,13 @@ int run_command(const RunOptions& options) {
   else
     opts.set("step", s.step)
         .set("rho_infinity", s.rho_infinity)
-        .set("formulation", s.stabilized_index2 ? "stabilized_index2" : "index3");
+        .set("formulation", s.stabilized_index2 ? "stabilized_index2" : "index3")
+        .set("stepping", s.ga_error_controlled ? "error_controlled" : "fixed");
+  if (!ida && s.ga_error_controlled)
+    opts.set("error_rtol", s.ga_controller.rtol)
+        .set("error_atol", s.ga_controller.atol)
+        .set("h_min", s.ga_controller.h_min)
+        .set("h_max", s.ga_controller.h_max);
   opts.set("output_interval", scene.output.interval).set("out", options.out_dir);
   for (const auto& [name, value] : counters) counts.set(name, value);
   for (const auto& [name, value] : timings) times.set(name, value);

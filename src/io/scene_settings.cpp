@@ -23,8 +23,8 @@ IntegratorSettings read_integrator(TableReader& root) {
     s.max_step = ida->number_or("max_step", s.max_step, Range::non_negative);
     s.max_order = static_cast<int>(ida->integer_or("max_order", s.max_order, 1));
     if (s.max_order > 5) ida->fail("max_order", "expected a BDF order 1 … 5");
-    s.ida_slope_position_scale =
-        ida->choice("slope_scale", {"unit", "position_equivalent"}, "unit") == "position_equivalent";
+    s.ida_slope_position_scale = ida->choice("slope_scale", {"unit", "position_equivalent"},
+                                             "unit") == "position_equivalent";
     s.ida_sundials_klu =
         ida->choice("linear_solver", {"ancf_klu", "sundials_klu"}, "ancf_klu") == "sundials_klu";
     ida->finish();
@@ -56,6 +56,7 @@ IntegratorSettings read_integrator(TableReader& root) {
                            : GeneralizedAlphaStepChange::automatic;
     s.ga_refresh_on_contact_change =
         ga->boolean_or("refresh_on_contact_change", s.ga_refresh_on_contact_change);
+    s.ga_filter_error_estimate = ga->boolean_or("error_filter", s.ga_filter_error_estimate);
     s.ga_max_damping_halvings =
         static_cast<int>(ga->integer_or("newton_damping", s.ga_max_damping_halvings, 0));
     if (!s.stabilized_index2 && s.rho_infinity >= 1.0)

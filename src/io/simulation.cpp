@@ -93,6 +93,7 @@ void run_genalpha(const Model& model, const IntegratorSettings& s, const std::ve
   o.step_change = s.ga_step_change;
   o.refresh_on_active_set_change = s.ga_refresh_on_contact_change;
   o.max_damping_halvings = s.ga_max_damping_halvings;
+  o.filter_error_estimate = s.ga_filter_error_estimate;
   GeneralizedAlphaStepper ga(problem, o);
   SystemState state = SystemState::initial(model);
   auto snapshot = [&] {

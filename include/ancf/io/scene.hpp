@@ -28,12 +28,12 @@ struct IntegratorSettings {
   /// IDA: absolute tolerances as multiples of the physical scale of each variable class
   /// (IdaOptions::atol_*); negative: equal to rtol.
   double ida_atol_position = -1.0, ida_atol_velocity = -1.0, ida_atol_multiplier = -1.0;
-  double max_step = 0.0;           ///< IDA step limit [s]; 0: none
-  int max_order = 5;               ///< IDA BDF order limit, 1 … 5
-  bool ida_sundials_klu = false;   ///< IDA: SUNDIALS' SUNLinSol_KLU instead of the project's
+  double max_step = 0.0;                  ///< IDA step limit [s]; 0: none
+  int max_order = 5;                      ///< IDA BDF order limit, 1 … 5
+  bool ida_sundials_klu = false;          ///< IDA: SUNDIALS' SUNLinSol_KLU instead of the project's
   bool ida_slope_position_scale = false;  ///< IDA: SlopeScale::position_equivalent tolerances
-  double step = 1e-3;              ///< generalized-α step size h [s] > 0
-  double rho_infinity = 0.8;       ///< generalized-α spectral radius at infinity, [0, 1]
+  double step = 1e-3;                     ///< generalized-α step size h [s] > 0
+  double rho_infinity = 0.8;              ///< generalized-α spectral radius at infinity, [0, 1]
   bool stabilized_index2 = false;  ///< generalized-α formulation (false: index 3, needs ρ∞ < 1)
   bool perturbed_start = false;    ///< generalized-α starting procedure (ABC 2015)
   /// Generalized-α absolute Newton tolerances [m], [m/s], [N].
@@ -45,7 +45,8 @@ struct IntegratorSettings {
   StepControllerOptions ga_controller;
   GeneralizedAlphaStepChange ga_step_change = GeneralizedAlphaStepChange::automatic;
   bool ga_refresh_on_contact_change = false;
-  int ga_max_damping_halvings = 0;  ///< damped Newton (GeneralizedAlphaOptions), 0: off
+  int ga_max_damping_halvings = 0;       ///< damped Newton (GeneralizedAlphaOptions), 0: off
+  bool ga_filter_error_estimate = true;  ///< filtered local error estimate
   /// Contact coupling blocks in the iteration matrix: those of the pairs that are near (default)
   /// or every candidate's (the first design, kept to measure against).
   ContactPatternPolicy contact_pattern = ContactPatternPolicy::near;
