@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -94,5 +95,24 @@ inline GeneralizedAlphaOptions tight(double h, double rho) {
   o.newton = NewtonStrategy::full;
   return o;
 }
+
+/// Sup-norm errors of a stepper's q, v and λ against the exact pendulum, over the output times at
+/// which add() is called, and the sup norms of the exact values (for relative errors).
+struct PendulumErrors {
+  double q = 0, v = 0, lambda = 0;
+  double q_scale = 0, v_scale = 0, lambda_scale = 0;
+  void add(SecondOrderProblem& problem, const ExactPendulum& exact,
+           const GeneralizedAlphaStepper& stepper) {
+    VecX qe, ve, acc, le;
+    exact.state(stepper.time(), qe, ve);
+    index1_solution(problem, stepper.time(), qe, ve, acc, le);
+    q = std::max(q, (stepper.positions() - qe).lpNorm<Eigen::Infinity>());
+    v = std::max(v, (stepper.velocities() - ve).lpNorm<Eigen::Infinity>());
+    lambda = std::max(lambda, (stepper.multipliers() - le).lpNorm<Eigen::Infinity>());
+    q_scale = std::max(q_scale, qe.lpNorm<Eigen::Infinity>());
+    v_scale = std::max(v_scale, ve.lpNorm<Eigen::Infinity>());
+    lambda_scale = std::max(lambda_scale, le.lpNorm<Eigen::Infinity>());
+  }
+};
 
 }  // namespace ancf::testing

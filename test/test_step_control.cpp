@@ -34,7 +34,6 @@ namespace ancf {
 namespace {
 
 using testing::ExactPendulum;
-using testing::index1_solution;
 using testing::tight;
 
 // --- controller ----------------------------------------------------------------------------------
@@ -169,23 +168,16 @@ SweepPoint pendulum_run(const GeneralizedAlphaOptions& o) {
   const Model model = rigid_pendulum_model(spec);
   MultibodyProblem problem(model);
   GeneralizedAlphaStepper stepper(problem, o);
-  VecX q, v, acc, lambda;
+  VecX q, v;
   exact.state(0.25, q, v);
   stepper.initialize(0.25, q, v);
-  SweepPoint r;
-  double scale[3] = {0, 0, 0};
+  testing::PendulumErrors e;
   for (int i = 1; i <= 20; ++i) {
     stepper.advance_to(0.25 + 0.05 * i);
-    exact.state(stepper.time(), q, v);
-    index1_solution(problem, stepper.time(), q, v, acc, lambda);
-    r.q = std::max(r.q, (stepper.positions() - q).lpNorm<Eigen::Infinity>());
-    r.v = std::max(r.v, (stepper.velocities() - v).lpNorm<Eigen::Infinity>());
-    r.lambda = std::max(r.lambda, (stepper.multipliers() - lambda).lpNorm<Eigen::Infinity>());
-    scale[0] = std::max(scale[0], q.lpNorm<Eigen::Infinity>());
-    scale[1] = std::max(scale[1], v.lpNorm<Eigen::Infinity>());
-    scale[2] = std::max(scale[2], lambda.lpNorm<Eigen::Infinity>());
+    e.add(problem, exact, stepper);
   }
-  r.q /= scale[0], r.v /= scale[1], r.lambda /= scale[2];
+  SweepPoint r;
+  r.q = e.q / e.q_scale, r.v = e.v / e.v_scale, r.lambda = e.lambda / e.lambda_scale;
   r.stats = stepper.statistics();
   r.mean_step = 1.0 / static_cast<double>(r.stats.steps);
   return r;
@@ -241,20 +233,17 @@ TEST(VariableStep, StepChangeVariantsKeepTheirOrder) {
       o.controller.h_max = h;
       o.step_change = c.change;
       GeneralizedAlphaStepper stepper(problem, o);
-      VecX q, v, acc, lambda;
+      VecX q, v;
       exact.state(0.25, q, v);
       stepper.initialize(0.25, q, v);
-      double e[3] = {0, 0, 0}, t = 0.25;
+      testing::PendulumErrors e;
+      double t = 0.25;
       for (int i = 0; t < 1.25; ++i) {
         t += i % 2 == 0 ? h : 1.5 * h;
         stepper.advance_to(t);
-        exact.state(stepper.time(), q, v);
-        index1_solution(problem, stepper.time(), q, v, acc, lambda);
-        e[0] = std::max(e[0], (stepper.positions() - q).lpNorm<Eigen::Infinity>());
-        e[1] = std::max(e[1], (stepper.velocities() - v).lpNorm<Eigen::Infinity>());
-        e[2] = std::max(e[2], (stepper.multipliers() - lambda).lpNorm<Eigen::Infinity>());
+        e.add(problem, exact, stepper);
       }
-      hs.push_back(h), eq.push_back(e[0]), ev.push_back(e[1]), el.push_back(e[2]);
+      hs.push_back(h), eq.push_back(e.q), ev.push_back(e.v), el.push_back(e.lambda);
       EXPECT_GT(stepper.statistics().step_size_changes, 20);
     }
     const double pq = fitted_order(hs, eq), pv = fitted_order(hs, ev), pl = fitted_order(hs, el);
