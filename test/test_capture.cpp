@@ -26,9 +26,10 @@ struct SmokeRun {
   SimulationCounters counters;
 };
 
-SmokeRun run(IntegratorKind kind) {
+SmokeRun run(IntegratorKind kind, bool error_controlled = false) {
   Scene scene = load_scene(std::string(ANCF_SOURCE_DIR) + "/studies/scenes/capture.toml");
   scene.integrator.kind = kind;
+  scene.integrator.ga_error_controlled = error_controlled;
   scene.integrator.t_end = 0.5;
   CaptureObserver observer(scene.model);
   Workspace ws(scene.model);
@@ -77,6 +78,30 @@ TEST(CaptureSmoke, FirstHalfSecondWithBothIntegrators) {
   EXPECT_LT(tilt_change, 1e-6);  // nothing touches the pole yet
   EXPECT_LT(ga.max_violation, 1e-8);
   EXPECT_LT(ida.max_violation, 1e-8);
+}
+
+// Error-controlled generalized-α (docs/time_step_control.md) over the same half second: it lands
+// on the same output times, tracks the drive as the fixed step does, holds the constraints, and
+// takes fewer steps than the fixed h = 1e-3 (the error allows larger ones in the slack phase).
+TEST(CaptureSmoke, ErrorControlledGeneralizedAlphaAgreesWithFixedStep) {
+  const SmokeRun fixed = run(IntegratorKind::genalpha), ec = run(IntegratorKind::genalpha, true);
+  ASSERT_EQ(ec.samples.size(), fixed.samples.size());
+  double tracking = 0.0, agreement = 0.0;
+  for (std::size_t k = 0; k < ec.samples.size(); ++k) {
+    EXPECT_EQ(ec.samples[k].t, fixed.samples[k].t);
+    tracking = std::max(tracking, std::abs(fixed.samples[k].ring_angle - reference_angle(fixed.samples[k].t)));
+    agreement = std::max(agreement, std::abs(ec.samples[k].ring_angle - fixed.samples[k].ring_angle));
+  }
+  auto counter = [](const SmokeRun& r, const std::string& name) {
+    for (const auto& [n, v] : r.counters)
+      if (n == name) return v;
+    return -1L;
+  };
+  std::printf("  error-controlled: %ld steps (fixed %ld), %ld rejected; max |theta_ec - theta_fixed| %.3e rad\n",
+              counter(ec, "steps"), counter(fixed, "steps"), counter(ec, "rejected steps"), agreement);
+  EXPECT_LT(agreement, 0.1 * tracking + 1e-6);
+  EXPECT_LT(ec.max_violation, 1e-8);
+  EXPECT_LT(counter(ec, "steps"), counter(fixed, "steps"));
 }
 
 }  // namespace
