@@ -8,9 +8,10 @@
 
 namespace ancf::app {
 
-int check_command(const std::string& scene_path) {
+int check_command(const std::string& scene_path, double max_steps) {
   try {
     const Scene scene = load_scene(scene_path);
+    require_bounded_steps(scene.integrator, scene.output.interval, max_steps);
     fmt::print("OK {}: {} unknowns, {} constraint rows\n", scene_path,
                scene.model.coordinate_count(), scene.model.multiplier_count());
     return 0;

@@ -3,6 +3,7 @@
 
 #include <Eigen/Geometry>
 
+#include "ancf/io/run_limits.hpp"
 #include "scene_parts.hpp"
 
 namespace ancf::io {
@@ -163,6 +164,12 @@ void read_cables(TableReader& root, SceneBuild& b) {
     const std::string name = t.string("name");
     if (b.names.cables.count(name)) t.fail("name", "the cable name '" + name + "' is used twice");
     const Index elements = t.integer("elements", 1);
+    b.elements += static_cast<double>(elements);
+    try {
+      require_memory_for_elements(b.elements, b.limits.memory_bytes);
+    } catch (const ModelError& e) {
+      t.fail("elements", e.what());
+    }
     const CableGeometry initial = read_geometry(t.table("geometry"), elements);
     const CableGeometry reference =
         t.has("reference") ? read_geometry(t.table("reference"), elements) : initial;
