@@ -104,6 +104,20 @@ TEST(SceneFiles, ElementCountBeyondTheMemoryBudgetIsRefused) {
   }
 }
 
+TEST(SceneFiles, GaussRulesPerTermReachTheElements) {
+  const Scene s = load_scene_from_string(
+      "[[cable]]\nname = \"c\"\nelements = 2\n"
+      "geometry = { kind = \"straight\", start = [0, 0, 0], end = [1, 0, 0] }\n"
+      "section = { EA = 1e5, EI = 1.0, mass_per_length = 0.1, axial_gauss_points = 4, "
+      "bending_gauss_points = 2 }\n",
+      "rules.toml");
+  const CableData& c = s.model.cables()[0];
+  EXPECT_EQ(c.section.quadrature, (CableQuadrature{4, 2}));
+  EXPECT_EQ(c.elements[1].axial.count, 4);
+  EXPECT_EQ(c.elements[1].bending.count, 2);
+  EXPECT_FALSE(c.elements[1].shared_points);
+}
+
 TEST(SceneFiles, PendulumSceneMatchesTheReferenceScene) {
   const Scene s = load_scene((kSource / "studies/scenes/cable_pendulum.toml").string());
   const Model reference = cable_pendulum_model(benchmark_cable_pendulum(20));

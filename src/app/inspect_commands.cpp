@@ -34,9 +34,11 @@ int info_command(const std::string& scene_path) {
     fmt::print("cables       {}\n", m.cables().size());
     for (const CableData& c : m.cables())
       fmt::print(
-          "  {:<18} {:>4} elements {:>4} nodes  EA {:.4g} N  EI {:.4g} N m^2  rhoA {:.4g} kg/m\n",
+          "  {:<18} {:>4} elements {:>4} nodes  EA {:.4g} N  EI {:.4g} N m^2  rhoA {:.4g} kg/m  "
+          "Gauss {}/{}\n",
           c.name, c.elements.size(), c.node_count, c.section.axial_stiffness,
-          c.section.bending_stiffness, c.section.mass_per_length);
+          c.section.bending_stiffness, c.section.mass_per_length, c.section.quadrature.axial,
+          c.section.quadrature.bending);
     fmt::print("bodies       {}\n", m.bodies().size());
     for (const BodyData& b : m.bodies())
       fmt::print("  {:<18} mass {:.4g} kg\n", b.name, b.inertia.mass);

@@ -1,5 +1,6 @@
 // [[cable]]: geometry (straight, polyline, helix, arc), optional stress-free reference, section.
 #include <cmath>
+#include <utility>
 
 #include <Eigen/Geometry>
 
@@ -153,6 +154,13 @@ CableSection read_section(TableReader s) {
     s.fail("bending_damping", "bending damping given with bending = false");
   c.mass_damping = s.number_or("mass_damping", 0.0, Range::non_negative);
   c.radius = s.number_or("radius", d ? *d / 2.0 : 0.0, Range::non_negative);
+  for (auto [key, points] : {std::pair{"axial_gauss_points", &c.quadrature.axial},
+                             std::pair{"bending_gauss_points", &c.quadrature.bending}}) {
+    *points = static_cast<int>(s.integer_or(key, *points, 1));
+    if (*points > kMaxCableGaussPoints)
+      s.fail(key, "expected 1 … " + std::to_string(kMaxCableGaussPoints) + " Gauss points, got " +
+                      std::to_string(*points));
+  }
   s.finish();
   return c;
 }
