@@ -6,6 +6,7 @@
 
 #include "ancf/io/run_limits.hpp"
 #include "scene_parts.hpp"
+#include "scene_velocity.hpp"
 
 namespace ancf::io {
 
@@ -182,15 +183,12 @@ void read_cables(TableReader& root, SceneBuild& b) {
     const CableGeometry reference =
         t.has("reference") ? read_geometry(t.table("reference"), elements) : initial;
     const CableSection section = read_section(t.table("section"));
-    const auto velocity = t.optional_vec3("velocity");
+    const auto velocities = read_cable_velocities(t, initial);
     t.finish();
     b.build(t, [&] {
       const Index c = b.builder.add_cable(name, reference, section);
-      if (t.has("reference") || velocity) {
-        std::vector<NodeCoordinates> v(initial.nodes.size(), NodeCoordinates::Zero());
-        for (auto& n : v) n.head<3>() = velocity.value_or(Vec3::Zero());
-        b.builder.set_initial_configuration(c, initial, &v);
-      }
+      if (t.has("reference") || velocities)
+        b.builder.set_initial_configuration(c, initial, velocities ? &*velocities : nullptr);
       b.names.cables[name] = c;
       b.cable_initial.push_back(initial);
       b.cable_radius.push_back(section.radius);
