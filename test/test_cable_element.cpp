@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "ancf/core/error.hpp"
 #include "ancf/physics/cable_element.hpp"
 #include "ancf/system/cable_geometry.hpp"
 #include "fd_check.hpp"
@@ -76,10 +77,13 @@ const char* measure_name(StrainMeasure m) {
 // Seeded random state: the reference scaled by 1 + s (s = 1…5 %) about its midpoint, rigidly
 // rotated and moved, plus random slope/position perturbations (curvature of order 1/m on a
 // straight reference). Velocities ~0.2 m/s, slope rates ~1/s. Damping time τ = 0.01 s makes the
-// Kelvin–Voigt forces comparable to the elastic ones.
+// Kelvin–Voigt forces comparable to the elastic ones. The three seeds use the Gauss rules
+// (axial/bending) 5/5 (default, one loop), 5/3 and 4/2 (separate loops), so that every term is
+// checked with each.
+constexpr CableQuadrature kRules[] = {{5, 5}, {5, 3}, {4, 2}};
 std::vector<Case> make_cases() {
   std::vector<Case> cases;
-  constexpr int kSeeds = 3;
+  constexpr int kSeeds = 3;  // = the number of rules in kRules
   unsigned seed = 12345;
   for (StrainMeasure m : {StrainMeasure::green_lagrange, StrainMeasure::elastic_line})
     for (const ReferenceElement& r : reference_elements())
@@ -96,7 +100,8 @@ std::vector<Case> make_cases() {
           c.section.axial_damping =
               k.axial_damping ? tau * std::max(c.section.axial_stiffness, 1e3) : 0.0;
           c.section.bending_damping = k.bending_damping ? tau * c.section.bending_stiffness : 0.0;
-          c.ref = CableElementReference::from_reference(r.e0, r.length, m);
+          c.section.quadrature = kRules[s];
+          c.ref = CableElementReference::from_reference(r.e0, r.length, m, c.section.quadrature);
 
           const double stretch = 0.01 + 0.04 * u(rng);
           const Mat3 rot = random_rotation(rng);
@@ -115,7 +120,8 @@ std::vector<Case> make_cases() {
           c.detail = c.label + " seed " + std::to_string(seed) +
                      " EA=" + std::to_string(c.section.axial_stiffness) +
                      " EI=" + std::to_string(c.section.bending_stiffness) +
-                     " eps_p=" + std::to_string(c.section.prestrain);
+                     " eps_p=" + std::to_string(c.section.prestrain) + " rule " +
+                     std::to_string(kRules[s].axial) + "/" + std::to_string(kRules[s].bending);
           cases.push_back(c);
         }
   return cases;
@@ -332,6 +338,81 @@ TEST(CableElementPaper, GreenEnergyAndForceEqualS5) {
 // agreement with an 80-point composite rule to round-off, with prestrain.
 TEST(CableElementPaper, FiveGaussPointsExactForGreenAxial) {
   compare_with_paper(0.013, 8, "8 x 10-point composite Gauss, eps_p = 0.013");
+}
+
+// ---- Gauss rules per term (CableQuadrature) ---------------------------------------------------
+
+// The rule is the one asked for: with 4 axial points the degree-8 Green energy is no longer
+// exact (relative error far above round-off), with 5 it is; the bending rule does not touch
+// an EI = 0 element.
+TEST(CableQuadrature, FourAxialPointsAreNotExactForGreenAxial) {
+  const ReferenceElement straight = reference_elements()[0];
+  std::mt19937 rng(7);
+  Vec12 e = straight.e0;
+  for (int n = 0; n < 2; ++n) {
+    e.segment<3>(6 * n) = 1.03 * e.segment<3>(6 * n) + random_vec3(rng, 0.05 * straight.length);
+    e.segment<3>(6 * n + 3) = 1.03 * e.segment<3>(6 * n + 3) + random_vec3(rng, 0.05);
+  }
+  const PaperElement p = paper_element(e, straight.length, 1e5, 0.0, 8, 10);
+  const double tol = roundoff_tolerance(p, 1e5, straight.length);
+  for (const CableQuadrature q : {CableQuadrature{5, 1}, CableQuadrature{4, 5}}) {
+    const CableSection sec{
+        .strain = StrainMeasure::green_lagrange, .axial_stiffness = 1e5, .quadrature = q};
+    const auto ref =
+        CableElementReference::from_reference(straight.e0, straight.length, sec.strain, q);
+    const double err = std::abs(evaluate(sec, ref, e, Vec12::Zero()).energy / p.energy - 1.0);
+    std::printf("Green axial energy, rule %d/%d: rel. error %.2e (round-off %.2e)\n", q.axial,
+                q.bending, err, tol);
+    if (q.axial == 5)
+      EXPECT_LE(err, tol);
+    else
+      EXPECT_GT(err, 1e3 * tol);
+  }
+}
+
+// Linearized at the straight stress-free reference, U ≈ ½EA∫(δr_x·x̂)² + ½EI∫|δr_xx,⊥|²: the
+// tangent is the bar matrix EA/(30l)[36, 3l, −36, 3l; …] on the axial components and the
+// Euler–Bernoulli matrix EI/l³[12, 6l, −12, 6l; …] on the transverse ones. Their integrands have
+// degree 4 and 2, so every rule with ≥ 3 axial and ≥ 2 bending points gives them to round-off;
+// 2 axial or 1 bending point does not (the 1-point bending matrix has rank 1).
+TEST(CableQuadrature, LinearStiffnessIsExactWithThreeAxialAndTwoBendingPoints) {
+  const double l = 0.3, ea = 2e4, ei = 3.0;
+  Mat4 bar, beam;
+  bar << 36, 3 * l, -36, 3 * l, 3 * l, 4 * l * l, -3 * l, -l * l, -36, -3 * l, 36, -3 * l, 3 * l,
+      -l * l, -3 * l, 4 * l * l;
+  beam << 12, 6 * l, -12, 6 * l, 6 * l, 4 * l * l, -6 * l, 2 * l * l, -12, -6 * l, 12, -6 * l,
+      6 * l, 2 * l * l, -6 * l, 4 * l * l;
+  bar *= ea / (30 * l);
+  beam *= ei / (l * l * l);
+  Mat12 exact = Mat12::Zero();
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) {
+      exact(3 * i, 3 * j) = bar(i, j);
+      exact(3 * i + 1, 3 * j + 1) = exact(3 * i + 2, 3 * j + 2) = beam(i, j);
+    }
+  const CableGeometry g = straight_cable(Vec3::Zero(), l * Vec3::UnitX(), 1);
+  const Vec12 e0 = g.element_coordinates(0);
+  for (const StrainMeasure m : {StrainMeasure::green_lagrange, StrainMeasure::elastic_line})
+    for (int na = 2; na <= 5; ++na)
+      for (int nb = 1; nb <= 5; ++nb) {
+        const CableSection sec{
+            .strain = m, .axial_stiffness = ea, .bending_stiffness = ei, .quadrature = {na, nb}};
+        const auto ref = CableElementReference::from_reference(e0, l, m, sec.quadrature);
+        const Mat12 k = evaluate(sec, ref, e0, Vec12::Zero()).stiffness;
+        const double err = (k - exact).cwiseAbs().maxCoeff() / exact.cwiseAbs().maxCoeff();
+        if (na >= 3 && nb >= 2)
+          EXPECT_LT(err, 64 * kEps) << measure_name(m) << " rule " << na << "/" << nb;
+        else
+          EXPECT_GT(err, 1e-3) << measure_name(m) << " rule " << na << "/" << nb;
+      }
+}
+
+TEST(CableQuadrature, RulesOutsideOneToFiveAreRefused) {
+  const CableGeometry g = straight_cable(Vec3::Zero(), Vec3::UnitX(), 1);
+  for (const CableQuadrature q : {CableQuadrature{0, 3}, CableQuadrature{5, 6}})
+    EXPECT_THROW((void)CableElementReference::from_reference(g.element_coordinates(0), 1.0,
+                                                             StrainMeasure::green_lagrange, q),
+                 ModelError);
 }
 
 }  // namespace

@@ -63,6 +63,61 @@ TEST(SceneFiles, MissingFileIsASceneError) {
   EXPECT_THROW((void)load_scene("/nonexistent/scene.toml"), SceneError);
 }
 
+// Issue 17 item 8: a directory read as an empty stream and an empty scene answered OK.
+TEST(SceneFiles, DirectoryIsNotASceneFile) {
+  try {
+    (void)load_scene(fs::temp_directory_path().string());
+    ADD_FAILURE() << "a directory loaded";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("is a directory, not a scene file"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(SceneFiles, SceneWithNothingToSimulateIsRefused) {
+  for (const std::string text :
+       {"", "# only a comment\n", "[scene]\nname = \"x\"\n", "[[frame]]\nname = \"f\"\n"}) {
+    try {
+      (void)load_scene_from_string(text, "empty.toml");
+      ADD_FAILURE() << "loaded: '" << text << "'";
+    } catch (const SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find("nothing to simulate"), std::string::npos) << e.what();
+    }
+  }
+}
+
+// The memory estimate is checked against the given budget before the cable is built: 1 000
+// elements need 24 MB, refused under a 10 MB budget, accepted under 100 MB.
+TEST(SceneFiles, ElementCountBeyondTheMemoryBudgetIsRefused) {
+  const std::string text =
+      "[[cable]]\nname = \"c\"\nelements = 1000\n"
+      "geometry = { kind = \"straight\", start = [0, 0, 0], end = [1, 0, 0] }\n"
+      "section = { EA = 1e5, mass_per_length = 0.1, bending = false }\n";
+  EXPECT_NO_THROW((void)load_scene_from_string(text, "c.toml", {.memory_bytes = 100e6}));
+  try {
+    (void)load_scene_from_string(text, "c.toml", {.memory_bytes = 10e6});
+    ADD_FAILURE() << "loaded";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.line(), 3);
+    EXPECT_EQ(e.key(), "cable[0].elements");
+    EXPECT_NE(e.message().find("more than the 0.01 GB allowed"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SceneFiles, GaussRulesPerTermReachTheElements) {
+  const Scene s = load_scene_from_string(
+      "[[cable]]\nname = \"c\"\nelements = 2\n"
+      "geometry = { kind = \"straight\", start = [0, 0, 0], end = [1, 0, 0] }\n"
+      "section = { EA = 1e5, EI = 1.0, mass_per_length = 0.1, axial_gauss_points = 4, "
+      "bending_gauss_points = 2 }\n",
+      "rules.toml");
+  const CableData& c = s.model.cables()[0];
+  EXPECT_EQ(c.section.quadrature, (CableQuadrature{4, 2}));
+  EXPECT_EQ(c.elements[1].axial.count, 4);
+  EXPECT_EQ(c.elements[1].bending.count, 2);
+  EXPECT_FALSE(c.elements[1].shared_points);
+}
+
 TEST(SceneFiles, PendulumSceneMatchesTheReferenceScene) {
   const Scene s = load_scene((kSource / "studies/scenes/cable_pendulum.toml").string());
   const Model reference = cable_pendulum_model(benchmark_cable_pendulum(20));

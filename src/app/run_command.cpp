@@ -53,6 +53,7 @@ int run_command(const RunOptions& options) {
     if (scene.integrator.kind == IntegratorKind::genalpha &&
         scene.integrator.step > scene.integrator.t_end)
       throw ModelError("--step exceeds t_end");
+    require_bounded_steps(scene.integrator, scene.output.interval, options.max_steps);
   } catch (const ModelError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 1;
