@@ -16,6 +16,7 @@
 
 #include "ancf/core/error.hpp"
 #include "ancf/physics/cable_element.hpp"
+#include "ancf/physics/hermite_shape.hpp"
 #include "ancf/system/cable_geometry.hpp"
 #include "fd_check.hpp"
 #include "random_geometry.hpp"
@@ -338,6 +339,121 @@ TEST(CableElementPaper, GreenEnergyAndForceEqualS5) {
 // agreement with an 80-point composite rule to round-off, with prestrain.
 TEST(CableElementPaper, FiveGaussPointsExactForGreenAxial) {
   compare_with_paper(0.013, 8, "8 x 10-point composite Gauss, eps_p = 0.013");
+}
+
+// ---- Bending damping: Kelvin–Voigt on κ̃ = √(κ² + κ_s²) (issue 17 item 6) -------------------
+
+// A straight cable of 0.25 m along x (κ = 0 everywhere), a bending-only section with damping.
+CableSection damped_bending_section(double kappa_s) {
+  return CableSection{.strain = StrainMeasure::green_lagrange,
+                      .bending_stiffness = 0.3,
+                      .bending_damping = 0.02,
+                      .bending_damping_curvature = kappa_s};
+}
+
+// Scalar curvature κ = |r' × r''|/|r'|^p of the Hermite interpolant at ξ (p = 3, Green), from
+// the shape functions: an independent evaluation of what the damping law is written in.
+double curvature_at(const Vec12& e, double xi, double l) {
+  const Vec4 d1 = hermite::first_derivative(xi, l), d2 = hermite::second_derivative(xi, l);
+  Vec3 a = Vec3::Zero(), b = Vec3::Zero();
+  for (int k = 0; k < 4; ++k) {
+    a += d1[k] * e.segment<3>(3 * k);
+    b += d2[k] * e.segment<3>(3 * k);
+  }
+  return a.cross(b).norm() / std::pow(a.norm(), 3);
+}
+
+// The law is what docs/formulation.md states: the dissipation ė·f_d (f_d the damping part of
+// the force) equals ∫ c_b κ̃̇² dx with κ̃ = √(κ² + κ_s²), κ̃̇ by central differences in time along
+// e + t ė, integrated with the element's 5 Gauss points (own rule; straight reference, J₀ = 1).
+// For κ ≫ κ_s it is the classical c_b κ̇²; at κ ≪ κ_s it fades like (κ/κ_s)². Tolerance: the
+// O(h²) error of the time difference at h = 1e-5 s (Richardson estimate from 2h) with a margin.
+TEST(BendingDamping, DissipationIsKelvinVoigtOnTheRegularizedCurvature) {
+  const ReferenceElement straight = reference_elements()[0];
+  const double l = straight.length;
+  std::vector<double> x, w;
+  gauss_rule(5, x, w);
+  for (const double kappa_s : {1e-3, 1.0, 30.0}) {
+    const CableSection sec = damped_bending_section(kappa_s);
+    const auto ref = CableElementReference::from_reference(straight.e0, l, sec.strain);
+    for (unsigned seed = 1; seed <= 4; ++seed) {
+      std::mt19937 rng(40 + seed);
+      Vec12 e = straight.e0, e_dot;
+      for (int k = 0; k < 4; ++k) {
+        e.segment<3>(3 * k) += random_vec3(rng, 0.05 * (k % 2 ? 1.0 : l));
+        e_dot.segment<3>(3 * k) = random_vec3(rng, k % 2 ? 1.0 : 0.2);
+      }
+      auto dissipation_by_differences = [&](double h) {
+        double sum = 0.0;
+        for (int g = 0; g < 5; ++g) {
+          auto regularized = [&](double t) {
+            const double kappa = curvature_at(e + t * e_dot, x[g], l);
+            return std::sqrt(kappa * kappa + kappa_s * kappa_s);
+          };
+          const double rate = (regularized(h) - regularized(-h)) / (2.0 * h);
+          sum += w[g] * l * sec.bending_damping * rate * rate;
+        }
+        return sum;
+      };
+      const double expected = dissipation_by_differences(1e-5);
+      // Richardson estimate of the O(h²) error, plus the rounding of κ̃ (≲ 30) over 2h.
+      const double fd_error = std::abs(expected - dissipation_by_differences(2e-5)) / 3.0 +
+                              64.0 * kEps * (30.0 / 1e-5) * expected;
+      CableSection still = sec;
+      still.bending_damping = 0.0;
+      const Vec12 f_d = evaluate(sec, ref, e, e_dot).force - evaluate(still, ref, e, e_dot).force;
+      const double dissipation = e_dot.dot(f_d);
+      EXPECT_NEAR(dissipation, expected, 10.0 * fd_error) << "kappa_s " << kappa_s;
+      if (seed == 1)
+        std::printf("kappa_s %g: dissipation %.10e W, c_b ∫ (d kappa~/dt)^2 %.10e W\n", kappa_s,
+                    dissipation, expected);
+    }
+  }
+}
+
+// Smooth at κ = 0, where a straight cable starts: the force, stiffness and damping matrix pass
+// the central-difference checks at an exactly straight configuration moving with a rigid
+// rotation plus a bending rate, and the damping matrix is continuous there (the previous law,
+// c_b κ̇ ∇κ, tends to c_b ∇κ∇κᵀ whose limit depends on the direction of approach).
+TEST(BendingDamping, SmoothAtZeroCurvature) {
+  const ReferenceElement straight = reference_elements()[0];
+  const double l = straight.length;
+  const CableSection sec = damped_bending_section(1.0);
+  const auto ref = CableElementReference::from_reference(straight.e0, l, sec.strain);
+  std::mt19937 rng(5);
+  const Vec3 omega(0.0, 4.0, 0.0);
+  Vec12 e_dot;
+  for (int n = 0; n < 2; ++n) {
+    e_dot.segment<3>(6 * n) =
+        omega.cross(Vec3(straight.e0.segment<3>(6 * n))) + random_vec3(rng, 0.1);
+    e_dot.segment<3>(6 * n + 3) =
+        omega.cross(Vec3(straight.e0.segment<3>(6 * n + 3))) + random_vec3(rng, 0.5);
+  }
+  const Vec12& e = straight.e0;
+  const CableElementResult at = evaluate(sec, ref, e, e_dot);
+  const auto force = [&](const VecX& q) { return VecX(evaluate(sec, ref, q, e_dot).force); };
+  const auto force_v = [&](const VecX& v) { return VecX(evaluate(sec, ref, e, v).force); };
+  const fdcheck::Result k = fdcheck::check_jacobian(force, e, at.stiffness);
+  const fdcheck::Result d = fdcheck::check_jacobian(force_v, e_dot, at.damping);
+  EXPECT_TRUE(k.ok()) << describe(k);
+  EXPECT_TRUE(d.ok()) << describe(d);
+  // Continuity: approaching κ = 0 along two perpendicular bending directions.
+  const double d_scale = sec.bending_damping / (l * l * l);
+  for (const int axis : {1, 2}) {
+    const Vec3 dir = Vec3::Unit(axis);
+    double previous = 0.0;
+    for (const double delta : {1e-2, 1e-3, 1e-4}) {
+      Vec12 bent = e;
+      bent.segment<3>(3) += delta * dir;  // slope at node i: a bend in the plane of x and dir
+      const double change =
+          (evaluate(sec, ref, bent, e_dot).damping - at.damping).cwiseAbs().maxCoeff() / d_scale;
+      if (previous > 0.0) {
+        EXPECT_LT(change, 0.02 * previous) << "delta " << delta;  // O(δ²)
+      }
+      previous = change;
+    }
+    EXPECT_LT(previous, 1e-4);  // → 0: the limit does not depend on the direction
+  }
 }
 
 // ---- Gauss rules per term (CableQuadrature) ---------------------------------------------------

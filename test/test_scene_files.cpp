@@ -3,6 +3,7 @@
 // model they describe; every scene under studies/scenes loads.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -116,6 +117,61 @@ TEST(SceneFiles, GaussRulesPerTermReachTheElements) {
   EXPECT_EQ(c.elements[1].axial.count, 4);
   EXPECT_EQ(c.elements[1].bending.count, 2);
   EXPECT_FALSE(c.elements[1].shared_points);
+}
+
+// Issue 17 item 2: a rigid rotation about a point for cables and bodies, per-node velocities.
+TEST(SceneFiles, InitialVelocitiesRigidRotationAndPerNode) {
+  const Scene s = load_scene_from_string(R"(
+[[cable]]
+name = "c"
+elements = 4
+velocity = [0.1, 0.0, 0.0]
+angular_velocity = [0.0, 4.0, 1.0]
+rotation_centre = [0.5, 0.0, 0.0]
+geometry = { kind = "arc", u = [1, 0, 0], w = [0, 1, 0], radius = 1.0, angle = 1.0 }
+section = { EA = 1e5, EI = 1.0, mass_per_length = 0.1 }
+[[cable.node_velocity]]
+node = -1
+slope_rate = [1.0, 2.0, 3.0]
+[[cable.node_velocity]]
+node = 1
+velocity = [7.0, 8.0, 9.0]
+[[body]]
+name = "b"
+mass = 1.0
+inertia = [1.0, 1.0, 1.0]
+position = [1.0, 2.0, 3.0]
+velocity = [0.0, 0.0, 1.0]
+angular_velocity = [0.0, 0.0, 2.0]
+rotation_centre = [0.0, 2.0, 3.0]
+[[body]]
+name = "plain"
+mass = 1.0
+inertia = [1.0, 1.0, 1.0]
+position = [1.0, 2.0, 3.0]
+velocity = [0.0, 0.0, 1.0]
+angular_velocity = [0.0, 0.0, 2.0]
+)",
+                                         "velocities.toml");
+  const Model& m = s.model;
+  const VecX& q = m.initial_coordinates();
+  const VecX& v = m.initial_velocities();
+  const Vec3 omega(0.0, 4.0, 1.0), centre(0.5, 0.0, 0.0), v0(0.1, 0.0, 0.0);
+  for (Index k = 0; k < 5; ++k) {
+    const Index i = m.node_coordinate(0, k);
+    const Vec3 r = q.segment<3>(i), rx = q.segment<3>(i + 3);
+    const Vec3 rdot = k == 1 ? Vec3(7.0, 8.0, 9.0) : Vec3(v0 + omega.cross(r - centre));
+    const Vec3 rxdot = k == 4 ? Vec3(1.0, 2.0, 3.0) : Vec3(omega.cross(rx));
+    EXPECT_LT((v.segment<3>(i) - rdot).norm(), 1e-15) << "node " << k;
+    EXPECT_LT((v.segment<3>(i + 3) - rxdot).norm(), 1e-15) << "node " << k;
+  }
+  // Body: velocity is that of rotation_centre; without it, that of the origin (as before).
+  const Index b = m.bodies()[0].first_coordinate, plain = m.bodies()[1].first_coordinate;
+  EXPECT_LT(
+      (v.segment<3>(b) - Vec3(0.0, 0.0, 1.0) - Vec3(0.0, 0.0, 2.0).cross(Vec3(1, 0, 0))).norm(),
+      1e-15);
+  EXPECT_LT((v.segment<3>(plain) - Vec3(0.0, 0.0, 1.0)).norm(), 1e-15);
+  EXPECT_LT((v.segment<3>(b + 3) - v.segment<3>(plain + 3)).norm(), 1e-15);  // same ω
 }
 
 TEST(SceneFiles, PendulumSceneMatchesTheReferenceScene) {

@@ -153,6 +153,8 @@ CableSection read_section(TableReader s) {
   c.bending_damping = s.number_or("bending_damping", 0.0, Range::non_negative);
   if (!bending && c.bending_damping > 0.0)
     s.fail("bending_damping", "bending damping given with bending = false");
+  c.bending_damping_curvature =
+      s.number_or("bending_damping_curvature", c.bending_damping_curvature, Range::positive);
   c.mass_damping = s.number_or("mass_damping", 0.0, Range::non_negative);
   c.radius = s.number_or("radius", d ? *d / 2.0 : 0.0, Range::non_negative);
   for (auto [key, points] : {std::pair{"axial_gauss_points", &c.quadrature.axial},

@@ -170,18 +170,19 @@ inline BendingPoint bending_point(const CableSection& sec, const Vec3& a, const 
   p.gx = (w * ei * h1) * c.grad;
   if (req.stiffness) p.hx = (w * ei) * (h1 * c.hess + h2 * c.grad * c.grad.transpose());
   if constexpr (kDamping) {
-    if (cb > 0.0 && kappa > 0.0) {
-      // κ̇ = ∇κ·ẋ with ∇κ = ∇K²/(2κ), ∇²κ = ∇²K²/(2κ) − ∇K²∇K²ᵀ/(4κ³).
-      const Vec6 dk = c.grad / (2.0 * kappa);
-      const double kappa_dot = dk.dot(x_dot);
-      p.gx += (w * cb * kappa_dot) * dk;
-      if (req.stiffness) {
-        const Mat6 hk =
-            c.hess / (2.0 * kappa) - c.grad * c.grad.transpose() / (4.0 * kappa * kappa * kappa);
-        p.hx += (w * cb) * (dk * (hk * x_dot).transpose() + kappa_dot * hk);
-      }
+    if (cb > 0.0) {
+      // Kelvin–Voigt on κ̃ = √(K² + κ_s²) (docs/formulation.md): f = c_b κ̃̇ ∇κ̃ = c_b φ χ̇ ∇χ
+      // with χ = K², χ̇ = ∇χ·ẋ, φ = 1/(4(χ + κ_s²)); ∂f/∂ẋ = c_b φ ∇χ∇χᵀ and
+      // ∂f/∂x = c_b [φ(χ̇ ∇²χ + ∇χ (∇²χ ẋ)ᵀ) − 4φ² χ̇ ∇χ∇χᵀ]. Smooth: φ ≤ 1/(4κ_s²).
+      const double ks = sec.bending_damping_curvature;
+      const double phi = 0.25 / (c.k2 + ks * ks);
+      const double chi_dot = c.grad.dot(x_dot);
+      p.gx += (w * cb * phi * chi_dot) * c.grad;
+      if (req.stiffness)
+        p.hx += (w * cb) * (phi * (chi_dot * c.hess + c.grad * (c.hess * x_dot).transpose()) -
+                            4.0 * phi * phi * chi_dot * c.grad * c.grad.transpose());
       if (req.damping_matrix) {
-        p.dx = (w * cb) * dk * dk.transpose();
+        p.dx = (w * cb * phi) * c.grad * c.grad.transpose();
         p.has_damping_matrix = true;
       }
     }

@@ -10,7 +10,8 @@
 // with ε_p the prestrain and κ₀ the reference curvature, so any reference (straight, arc, helix)
 // is exactly stress-free when ε_p = 0. For a straight reference along its arc length J₀ = 1 and
 // κ₀ = 0, and with EI = 0 this is exactly the paper's element. Damping (Kelvin–Voigt) adds the
-// generalised force ∫ [c_a ε̇ ∂ε/∂e + c_b κ̇ ∂κ/∂e] J₀ dx.
+// generalised force ∫ [c_a ε̇ ∂ε/∂e + c_b κ̃̇ ∂κ̃/∂e] J₀ dx with the regularized curvature
+// κ̃ = √(κ² + κ_s²), which is smooth and objective (docs/formulation.md).
 #pragma once
 
 #include <array>
@@ -49,7 +50,10 @@ struct CableSection {
   double mass_per_length = 0.0;    ///< ρA [kg/m]
   double prestrain = 0.0;          ///< ε_p [-]: the reference carries axial force EA·ε_p
   double axial_damping = 0.0;      ///< c_a [N s]: Kelvin–Voigt axial force c_a ε̇
-  double bending_damping = 0.0;    ///< c_b [N m² s]: Kelvin–Voigt bending moment c_b κ̇
+  double bending_damping = 0.0;    ///< c_b [N m² s]: Kelvin–Voigt bending moment c_b κ̃̇
+  /// κ_s [1/m] > 0: the bending damping acts on κ̃ = √(κ² + κ_s²), smooth and objective; it is
+  /// c_b κ̇ for κ ≫ κ_s and fades like (κ/κ_s)² below (docs/formulation.md, "Bending damping").
+  double bending_damping_curvature = 1.0;
   /// α [1/s]: mass-proportional (Rayleigh) damping, the distributed force −α ρA ṙ per unit length
   /// (consistent: −α M v on the cable's coordinates). Unlike Kelvin–Voigt it acts on every motion,
   /// rigid and zero-stiffness ones included (a drag against the inertial frame), so it does not
