@@ -6,7 +6,8 @@
 //
 // Usage: ancf-study-ida-capture [--scene studies/scenes/capture.toml] [--t-end T] [--window W]
 //                               [--rtol R] [--max-order K] [--axial-damping C]
-//                               [--slope-position-scale] [--max-newton N] [--out DIR]
+//                               [--slope-position-scale] [--max-newton N] [--friction MU]
+//                               [--regularization-speed V] [--onset-depth D] [--out DIR]
 #include <fmt/format.h>
 
 #include <toml++/toml.h>
@@ -29,6 +30,7 @@ namespace {
 struct Options {
   std::string scene = "studies/scenes/capture.toml", out = "out/ida-capture-diagnosis";
   double t_end = 3.0, window = 1e-3, rtol = 0.0, axial_damping = -1.0;
+  double friction = -1.0, regularization_speed = 0.0, onset_depth = 0.0;  // contact law overrides
   int max_order = 0;
   bool slope_position_scale = false;
   int max_newton = 0;
@@ -54,6 +56,12 @@ Options parse(int argc, char** argv) {
       o.max_order = std::stoi(value());
     else if (a == "--axial-damping")
       o.axial_damping = std::stod(value());
+    else if (a == "--friction")
+      o.friction = std::stod(value());
+    else if (a == "--regularization-speed")
+      o.regularization_speed = std::stod(value());
+    else if (a == "--onset-depth")
+      o.onset_depth = std::stod(value());
     else if (a == "--out")
       o.out = value();
     else if (a == "--slope-position-scale")
@@ -93,6 +101,13 @@ int main(int argc, char** argv) {
     if (o.axial_damping >= 0.0)
       for (toml::node& c : *root["cable"].as_array())
         c.as_table()->at("section").as_table()->insert_or_assign("axial_damping", o.axial_damping);
+    for (toml::node& c : *root["contact"].as_array()) {
+      toml::table& law = *c.as_table()->at("law").as_table();
+      if (o.friction >= 0.0) law.insert_or_assign("friction", o.friction);
+      if (o.regularization_speed > 0.0)
+        law.insert_or_assign("regularization_speed", o.regularization_speed);
+      if (o.onset_depth > 0.0) law.insert_or_assign("onset_depth", o.onset_depth);
+    }
     std::ostringstream text;
     text << root;
     scene = load_scene_from_string(text.str(), o.scene);

@@ -3,6 +3,7 @@
 // model they describe; every scene under studies/scenes loads.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -61,6 +62,116 @@ TEST(SceneFiles, EachMalformedSceneGivesItsLocatedMessage) {
 
 TEST(SceneFiles, MissingFileIsASceneError) {
   EXPECT_THROW((void)load_scene("/nonexistent/scene.toml"), SceneError);
+}
+
+// Issue 17 item 8: a directory read as an empty stream and an empty scene answered OK.
+TEST(SceneFiles, DirectoryIsNotASceneFile) {
+  try {
+    (void)load_scene(fs::temp_directory_path().string());
+    ADD_FAILURE() << "a directory loaded";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("is a directory, not a scene file"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(SceneFiles, SceneWithNothingToSimulateIsRefused) {
+  for (const std::string text :
+       {"", "# only a comment\n", "[scene]\nname = \"x\"\n", "[[frame]]\nname = \"f\"\n"}) {
+    try {
+      (void)load_scene_from_string(text, "empty.toml");
+      ADD_FAILURE() << "loaded: '" << text << "'";
+    } catch (const SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find("nothing to simulate"), std::string::npos) << e.what();
+    }
+  }
+}
+
+// The memory estimate is checked against the given budget before the cable is built: 1 000
+// elements need 24 MB, refused under a 10 MB budget, accepted under 100 MB.
+TEST(SceneFiles, ElementCountBeyondTheMemoryBudgetIsRefused) {
+  const std::string text =
+      "[[cable]]\nname = \"c\"\nelements = 1000\n"
+      "geometry = { kind = \"straight\", start = [0, 0, 0], end = [1, 0, 0] }\n"
+      "section = { EA = 1e5, mass_per_length = 0.1, bending = false }\n";
+  EXPECT_NO_THROW((void)load_scene_from_string(text, "c.toml", {.memory_bytes = 100e6}));
+  try {
+    (void)load_scene_from_string(text, "c.toml", {.memory_bytes = 10e6});
+    ADD_FAILURE() << "loaded";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.line(), 3);
+    EXPECT_EQ(e.key(), "cable[0].elements");
+    EXPECT_NE(e.message().find("more than the 0.01 GB allowed"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SceneFiles, GaussRulesPerTermReachTheElements) {
+  const Scene s = load_scene_from_string(
+      "[[cable]]\nname = \"c\"\nelements = 2\n"
+      "geometry = { kind = \"straight\", start = [0, 0, 0], end = [1, 0, 0] }\n"
+      "section = { EA = 1e5, EI = 1.0, mass_per_length = 0.1, axial_gauss_points = 4, "
+      "bending_gauss_points = 2 }\n",
+      "rules.toml");
+  const CableData& c = s.model.cables()[0];
+  EXPECT_EQ(c.section.quadrature, (CableQuadrature{4, 2}));
+  EXPECT_EQ(c.elements[1].axial.count, 4);
+  EXPECT_EQ(c.elements[1].bending.count, 2);
+  EXPECT_FALSE(c.elements[1].shared_points);
+}
+
+// Issue 17 item 2: a rigid rotation about a point for cables and bodies, per-node velocities.
+TEST(SceneFiles, InitialVelocitiesRigidRotationAndPerNode) {
+  const Scene s = load_scene_from_string(R"(
+[[cable]]
+name = "c"
+elements = 4
+velocity = [0.1, 0.0, 0.0]
+angular_velocity = [0.0, 4.0, 1.0]
+rotation_centre = [0.5, 0.0, 0.0]
+geometry = { kind = "arc", u = [1, 0, 0], w = [0, 1, 0], radius = 1.0, angle = 1.0 }
+section = { EA = 1e5, EI = 1.0, mass_per_length = 0.1 }
+[[cable.node_velocity]]
+node = -1
+slope_rate = [1.0, 2.0, 3.0]
+[[cable.node_velocity]]
+node = 1
+velocity = [7.0, 8.0, 9.0]
+[[body]]
+name = "b"
+mass = 1.0
+inertia = [1.0, 1.0, 1.0]
+position = [1.0, 2.0, 3.0]
+velocity = [0.0, 0.0, 1.0]
+angular_velocity = [0.0, 0.0, 2.0]
+rotation_centre = [0.0, 2.0, 3.0]
+[[body]]
+name = "plain"
+mass = 1.0
+inertia = [1.0, 1.0, 1.0]
+position = [1.0, 2.0, 3.0]
+velocity = [0.0, 0.0, 1.0]
+angular_velocity = [0.0, 0.0, 2.0]
+)",
+                                         "velocities.toml");
+  const Model& m = s.model;
+  const VecX& q = m.initial_coordinates();
+  const VecX& v = m.initial_velocities();
+  const Vec3 omega(0.0, 4.0, 1.0), centre(0.5, 0.0, 0.0), v0(0.1, 0.0, 0.0);
+  for (Index k = 0; k < 5; ++k) {
+    const Index i = m.node_coordinate(0, k);
+    const Vec3 r = q.segment<3>(i), rx = q.segment<3>(i + 3);
+    const Vec3 rdot = k == 1 ? Vec3(7.0, 8.0, 9.0) : Vec3(v0 + omega.cross(r - centre));
+    const Vec3 rxdot = k == 4 ? Vec3(1.0, 2.0, 3.0) : Vec3(omega.cross(rx));
+    EXPECT_LT((v.segment<3>(i) - rdot).norm(), 1e-15) << "node " << k;
+    EXPECT_LT((v.segment<3>(i + 3) - rxdot).norm(), 1e-15) << "node " << k;
+  }
+  // Body: velocity is that of rotation_centre; without it, that of the origin (as before).
+  const Index b = m.bodies()[0].first_coordinate, plain = m.bodies()[1].first_coordinate;
+  EXPECT_LT(
+      (v.segment<3>(b) - Vec3(0.0, 0.0, 1.0) - Vec3(0.0, 0.0, 2.0).cross(Vec3(1, 0, 0))).norm(),
+      1e-15);
+  EXPECT_LT((v.segment<3>(plain) - Vec3(0.0, 0.0, 1.0)).norm(), 1e-15);
+  EXPECT_LT((v.segment<3>(b + 3) - v.segment<3>(plain + 3)).norm(), 1e-15);  // same ω
 }
 
 TEST(SceneFiles, PendulumSceneMatchesTheReferenceScene) {

@@ -8,8 +8,13 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   std::string scene;
 
+  double check_max_steps = ancf::kDefaultMaxSteps;
   CLI::App* check = app.add_subcommand("check", "parse and validate a scene (exit 1 on error)");
   check->add_option("SCENE", scene, "scene file (TOML)")->required();
+  check
+      ->add_option("--max-steps", check_max_steps,
+                   "refuse settings that imply more steps (default 1e7)")
+      ->check(CLI::PositiveNumber);
   CLI::App* info =
       app.add_subcommand("info", "print unknowns, constraints, nonzeros, contact pairs");
   info->add_option("SCENE", scene, "scene file (TOML)")->required();
@@ -42,9 +47,12 @@ int main(int argc, char** argv) {
   run->add_flag("--progress", run_options.progress,
                 "progress bar even if stderr is not a terminal");
   run->add_flag("--quiet", run_options.quiet, "no summary table");
+  run->add_option("--max-steps", run_options.max_steps,
+                  "refuse runs that imply more steps (default 1e7)")
+      ->check(CLI::PositiveNumber);
 
   CLI11_PARSE(app, argc, argv);
-  if (*check) return ancf::app::check_command(scene);
+  if (*check) return ancf::app::check_command(scene, check_max_steps);
   if (*info) return ancf::app::info_command(scene);
   return ancf::app::run_command(run_options);
 }

@@ -4,10 +4,13 @@
 
 #include <string>
 
+#include "ancf/io/run_limits.hpp"
+
 namespace ancf::app {
 
-/// `ancf check SCENE`: parse, validate and finalize; prints "OK" or the located error.
-int check_command(const std::string& scene_path);
+/// `ancf check SCENE`: parse, validate and finalize; prints "OK" or the located error. Also
+/// refuses a scene whose own [integrator]/[output] settings imply more than `max_steps` steps.
+int check_command(const std::string& scene_path, double max_steps = kDefaultMaxSteps);
 /// `ancf info SCENE`: unknowns, constraints, multipliers, pattern nonzeros, contact pairs.
 int info_command(const std::string& scene_path);
 
@@ -25,6 +28,7 @@ struct RunOptions {
   std::string out_dir = "out";
   bool progress = false;  ///< force the progress bar even when stderr is not a terminal
   bool quiet = false;     ///< no summary table
+  double max_steps = kDefaultMaxSteps;  ///< refuse runs that imply more steps (run_limits.hpp)
 };
 /// `ancf run SCENE …`: integrate and write probes.csv, VTK frames, run.json into out_dir.
 int run_command(const RunOptions& options);

@@ -9,9 +9,10 @@
 
 namespace ancf::app {
 
-int check_command(const std::string& scene_path) {
+int check_command(const std::string& scene_path, double max_steps) {
   try {
     const Scene scene = load_scene(scene_path);
+    require_bounded_steps(scene.integrator, scene.output.interval, max_steps);
     fmt::print("OK {}: {} unknowns, {} constraint rows\n", scene_path,
                scene.model.coordinate_count(), scene.model.multiplier_count());
     return 0;
@@ -45,9 +46,11 @@ int info_command(const std::string& scene_path) {
     fmt::print("cables       {}\n", m.cables().size());
     for (const CableData& c : m.cables())
       fmt::print(
-          "  {:<18} {:>4} elements {:>4} nodes  EA {:.4g} N  EI {:.4g} N m^2  rhoA {:.4g} kg/m\n",
+          "  {:<18} {:>4} elements {:>4} nodes  EA {:.4g} N  EI {:.4g} N m^2  rhoA {:.4g} kg/m  "
+          "Gauss {}/{}\n",
           c.name, c.elements.size(), c.node_count, c.section.axial_stiffness,
-          c.section.bending_stiffness, c.section.mass_per_length);
+          c.section.bending_stiffness, c.section.mass_per_length, c.section.quadrature.axial,
+          c.section.quadrature.bending);
     fmt::print("bodies       {}\n", m.bodies().size());
     for (const BodyData& b : m.bodies())
       fmt::print("  {:<18} mass {:.4g} kg\n", b.name, b.inertia.mass);

@@ -61,6 +61,7 @@ int run_command(const RunOptions& options) {
     const StepControllerOptions& c = scene.integrator.ga_controller;
     if (c.h_max > 0.0 && c.h_max < c.h_min)
       throw ModelError("generalized-alpha h_max (--h-max) is below h_min (--h-min)");
+    require_bounded_steps(scene.integrator, scene.output.interval, options.max_steps);
   } catch (const ModelError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 1;

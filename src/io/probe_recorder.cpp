@@ -107,7 +107,10 @@ CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& co
 
 void CsvWriter::write(const std::vector<double>& row) {
   for (std::size_t i = 0; i < row.size(); ++i)
-    out_ << (i ? "," : "") << fmt::format("{:.10g}", row[i]);
+    // "{}" is the shortest decimal that reads back to the same double (≤ 17 significant
+    // digits): full precision, round-trip exact, and short for short values (0.05, not
+    // 0.050000000000000003).
+    out_ << (i ? "," : "") << fmt::format("{}", row[i]);
   out_ << '\n' << std::flush;
   ++rows_;
 }

@@ -35,8 +35,9 @@ JsonObject& JsonObject::set(const std::string& key, const std::string& value) {
   return *this;
 }
 JsonObject& JsonObject::set(const std::string& key, double value) {
-  // JSON has no inf/nan: write null for them.
-  members_.emplace_back(key, std::isfinite(value) ? fmt::format("{:.10g}", value) : "null");
+  // JSON has no inf/nan: write null for them. Finite values at full precision (the shortest
+  // decimal that reads back to the same double).
+  members_.emplace_back(key, std::isfinite(value) ? fmt::format("{}", value) : "null");
   return *this;
 }
 JsonObject& JsonObject::set(const std::string& key, long value) {

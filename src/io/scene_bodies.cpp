@@ -1,5 +1,6 @@
 // [[body]] (rigid bodies) and [[frame]] (driven frames with a prescribed rotation law).
 #include "scene_parts.hpp"
+#include "scene_velocity.hpp"
 
 namespace ancf::io {
 
@@ -52,12 +53,13 @@ void read_bodies(TableReader& root, SceneBuild& b) {
     inertia.inertia = read_inertia(t);
     const Vec3 position = t.vec3_or("position", Vec3::Zero());
     const Mat3 rotation = read_rotation(t, "rotation");
-    const Vec3 velocity = t.vec3_or("velocity", Vec3::Zero());
-    const Vec3 omega = t.vec3_or("angular_velocity", Vec3::Zero());
+    // velocity: of rotation_centre (default: the body origin, so that it is the origin's).
+    const RigidVelocity v = read_rigid_velocity(t, position);
     t.finish();
     b.build(t, [&] {
       inertia.validate(name);
-      b.names.bodies[name] = b.builder.add_body(name, inertia, position, rotation, velocity, omega);
+      b.names.bodies[name] =
+          b.builder.add_body(name, inertia, position, rotation, v.at(position), v.omega);
     });
   }
 }

@@ -1,9 +1,12 @@
 // [[cable]]: geometry (straight, polyline, helix, arc), optional stress-free reference, section.
 #include <cmath>
+#include <utility>
 
 #include <Eigen/Geometry>
 
+#include "ancf/io/run_limits.hpp"
 #include "scene_parts.hpp"
+#include "scene_velocity.hpp"
 
 namespace ancf::io {
 
@@ -150,8 +153,17 @@ CableSection read_section(TableReader s) {
   c.bending_damping = s.number_or("bending_damping", 0.0, Range::non_negative);
   if (!bending && c.bending_damping > 0.0)
     s.fail("bending_damping", "bending damping given with bending = false");
+  c.bending_damping_curvature =
+      s.number_or("bending_damping_curvature", c.bending_damping_curvature, Range::positive);
   c.mass_damping = s.number_or("mass_damping", 0.0, Range::non_negative);
   c.radius = s.number_or("radius", d ? *d / 2.0 : 0.0, Range::non_negative);
+  for (auto [key, points] : {std::pair{"axial_gauss_points", &c.quadrature.axial},
+                             std::pair{"bending_gauss_points", &c.quadrature.bending}}) {
+    *points = static_cast<int>(s.integer_or(key, *points, 1));
+    if (*points > kMaxCableGaussPoints)
+      s.fail(key, "expected 1 … " + std::to_string(kMaxCableGaussPoints) + " Gauss points, got " +
+                      std::to_string(*points));
+  }
   s.finish();
   return c;
 }
@@ -163,19 +175,22 @@ void read_cables(TableReader& root, SceneBuild& b) {
     const std::string name = t.string("name");
     if (b.names.cables.count(name)) t.fail("name", "the cable name '" + name + "' is used twice");
     const Index elements = t.integer("elements", 1);
+    b.elements += static_cast<double>(elements);
+    try {
+      require_memory_for_elements(b.elements, b.limits.memory_bytes);
+    } catch (const ModelError& e) {
+      t.fail("elements", e.what());
+    }
     const CableGeometry initial = read_geometry(t.table("geometry"), elements);
     const CableGeometry reference =
         t.has("reference") ? read_geometry(t.table("reference"), elements) : initial;
     const CableSection section = read_section(t.table("section"));
-    const auto velocity = t.optional_vec3("velocity");
+    const auto velocities = read_cable_velocities(t, initial);
     t.finish();
     b.build(t, [&] {
       const Index c = b.builder.add_cable(name, reference, section);
-      if (t.has("reference") || velocity) {
-        std::vector<NodeCoordinates> v(initial.nodes.size(), NodeCoordinates::Zero());
-        for (auto& n : v) n.head<3>() = velocity.value_or(Vec3::Zero());
-        b.builder.set_initial_configuration(c, initial, &v);
-      }
+      if (t.has("reference") || velocities)
+        b.builder.set_initial_configuration(c, initial, velocities ? &*velocities : nullptr);
       b.names.cables[name] = c;
       b.cable_initial.push_back(initial);
       b.cable_radius.push_back(section.radius);

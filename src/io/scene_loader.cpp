@@ -20,8 +20,9 @@ std::string first_named_constraint(const std::string& message) {
                                 : message.substr(a + tag.size(), b - a - tag.size());
 }
 
-Scene build_scene(const toml::table& root_table, const std::string& path) {
-  io::SceneBuild b(path);
+Scene build_scene(const toml::table& root_table, const std::string& path,
+                  const SceneLimits& limits) {
+  io::SceneBuild b(path, limits);
   io::TableReader root(path, root_table, "");
   Scene scene;
   scene.path = path;
@@ -43,6 +44,9 @@ Scene build_scene(const toml::table& root_table, const std::string& path) {
   scene.integrator = io::read_integrator(root);
   scene.output = io::read_output(root, b);
   root.finish();
+  if (b.cable_names.empty() && b.names.bodies.empty())
+    throw SceneError(path, 0, 0, "",
+                     "nothing to simulate: the scene has no [[cable]] and no [[body]]");
   try {
     scene.model = b.builder.finalize();
   } catch (const ModelError& e) {
@@ -59,7 +63,8 @@ Scene build_scene(const toml::table& root_table, const std::string& path) {
 
 }  // namespace
 
-Scene load_scene_from_string(const std::string& text, const std::string& path) {
+Scene load_scene_from_string(const std::string& text, const std::string& path,
+                             const SceneLimits& limits) {
   toml::table root;
   try {
     root = toml::parse(text, path);
@@ -68,15 +73,25 @@ Scene load_scene_from_string(const std::string& text, const std::string& path) {
                      static_cast<int>(e.source().begin.column), "",
                      "TOML syntax error: " + std::string(e.description()));
   }
-  return build_scene(root, path);
+  return build_scene(root, path, limits);
 }
 
-Scene load_scene(const std::string& path) {
+Scene load_scene(const std::string& path, const SceneLimits& limits) {
+  // A directory opens as an empty stream on Linux and would read as an empty scene.
+  std::error_code error;
+  const auto status = std::filesystem::status(path, error);
+  if (!std::filesystem::exists(status))
+    throw SceneError(path, 0, 0, "", "cannot open the scene file (no such file)");
+  if (!std::filesystem::is_regular_file(status))
+    throw SceneError(path, 0, 0, "",
+                     std::filesystem::is_directory(status)
+                         ? "is a directory, not a scene file"
+                         : "is not a regular file (expected a TOML scene file)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError(path, 0, 0, "", "cannot open the scene file");
   std::ostringstream text;
   text << in.rdbuf();
-  return load_scene_from_string(text.str(), path);
+  return load_scene_from_string(text.str(), path, limits);
 }
 
 }  // namespace ancf

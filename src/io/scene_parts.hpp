@@ -13,8 +13,10 @@
 namespace ancf::io {
 
 struct SceneBuild {
-  explicit SceneBuild(const std::string& f) : file(f) {}
+  SceneBuild(const std::string& f, const SceneLimits& l) : file(f), limits(l) {}
   const std::string& file;
+  const SceneLimits& limits;
+  double elements = 0.0;  // cable elements read so far (memory estimate, run_limits.hpp)
   ModelBuilder builder;
   SceneNames names;
   std::vector<CableGeometry> cable_initial;  // initial configuration per cable (defaults of pins)

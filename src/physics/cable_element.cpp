@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "ancf/core/error.hpp"
 #include "ancf/physics/hermite_shape.hpp"
@@ -50,7 +51,9 @@ struct CurvatureSquared {
   Eigen::Matrix<double, 6, 6> hess;
 };
 
-inline int curvature_power(StrainMeasure m) { return m == StrainMeasure::green_lagrange ? 3 : 2; }
+inline int curvature_power(StrainMeasure m) {
+  return m == StrainMeasure::green_lagrange ? 3 : 2;
+}
 
 // (a·a)^(−p) for p ∈ {2, 3} without std::pow, which costs ~25% of the bending force.
 inline double inverse_power(double saa, int p) {
@@ -111,118 +114,171 @@ inline void scatter_matrix(const Vec4& d1, const Vec4& d2, const Eigen::Matrix<d
                                      (d2[m] * d1[n]) * hba + (d2[m] * d2[n]) * hbb;
 }
 
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+using Mat6 = Eigen::Matrix<double, 6, 6>;
+
+/// Axial terms at one Gauss point: gradient and Hessian in a = r_x (elastic + damping) and the
+/// damping matrix block in ȧ.
+struct AxialPoint {
+  Vec3 ga;
+  Mat3 haa, daa;
+};
+
+template <bool kDamping>
+inline AxialPoint axial_point(const CableSection& sec, const Vec3& a, const Vec3& a_dot, double w,
+                              double inv_j0, const CableEvalRequest& req, double& energy) {
+  const double ea = sec.axial_stiffness, ca = sec.axial_damping;
+  const AxialStrain s = axial_strain(sec.strain, a, inv_j0);
+  const double n_axial = ea * (s.eps + sec.prestrain);  // axial force conjugate to ε
+  energy += 0.5 * w * n_axial * (s.eps + sec.prestrain);
+  AxialPoint p;
+  p.ga = (w * n_axial) * s.eps_a;
+  if (req.stiffness) p.haa = w * (ea * s.eps_a * s.eps_a.transpose() + n_axial * s.eps_aa);
+  if constexpr (kDamping) {
+    if (ca > 0.0) {
+      const double eps_dot = s.eps_a.dot(a_dot);
+      p.ga += (w * ca * eps_dot) * s.eps_a;
+      if (req.stiffness)
+        p.haa += (w * ca) * (s.eps_a * (s.eps_aa * a_dot).transpose() + eps_dot * s.eps_aa);
+      if (req.damping_matrix) p.daa = (w * ca) * s.eps_a * s.eps_a.transpose();
+    }
+  }
+  return p;
+}
+
+/// Bending terms at one Gauss point: gradient and Hessian in x = (a, b) = (r_x, r_xx) and the
+/// damping matrix block in ẋ.
+struct BendingPoint {
+  Vec6 gx;
+  Mat6 hx, dx;
+  bool has_damping_matrix = false;
+};
+
+template <bool kDamping>
+inline BendingPoint bending_point(const CableSection& sec, const Vec3& a, const Vec3& b,
+                                  const Vec6& x_dot, double w, double kappa_ref,
+                                  const CableEvalRequest& req, double& energy) {
+  const double ei = sec.bending_stiffness, cb = sec.bending_damping;
+  const CurvatureSquared c = curvature_squared(a, b, curvature_power(sec.strain));
+  const double kappa = std::sqrt(c.k2);
+  energy += 0.5 * w * ei * (kappa - kappa_ref) * (kappa - kappa_ref);
+  const double kappa0 = kappa > kVanishingCurvatureRatio * kappa_ref ? kappa_ref : 0.0;
+  // U_b = EI h(K²) with h = ½K² − κ₀√K² + ½κ₀²: h' = ½ − κ₀/(2κ), h'' = κ₀/(4κ³).
+  const double h1 = kappa0 > 0.0 ? 0.5 - 0.5 * kappa0 / kappa : 0.5;
+  const double h2 = kappa0 > 0.0 ? 0.25 * kappa0 / (kappa * kappa * kappa) : 0.0;
+  BendingPoint p;
+  p.gx = (w * ei * h1) * c.grad;
+  if (req.stiffness) p.hx = (w * ei) * (h1 * c.hess + h2 * c.grad * c.grad.transpose());
+  if constexpr (kDamping) {
+    if (cb > 0.0) {
+      // Kelvin–Voigt on κ̃ = √(K² + κ_s²) (docs/formulation.md): f = c_b κ̃̇ ∇κ̃ = c_b φ χ̇ ∇χ
+      // with χ = K², χ̇ = ∇χ·ẋ, φ = 1/(4(χ + κ_s²)); ∂f/∂ẋ = c_b φ ∇χ∇χᵀ and
+      // ∂f/∂x = c_b [φ(χ̇ ∇²χ + ∇χ (∇²χ ẋ)ᵀ) − 4φ² χ̇ ∇χ∇χᵀ]. Smooth: φ ≤ 1/(4κ_s²).
+      const double ks = sec.bending_damping_curvature;
+      const double phi = 0.25 / (c.k2 + ks * ks);
+      const double chi_dot = c.grad.dot(x_dot);
+      p.gx += (w * cb * phi * chi_dot) * c.grad;
+      if (req.stiffness)
+        p.hx += (w * cb) * (phi * (chi_dot * c.hess + c.grad * (c.hess * x_dot).transpose()) -
+                            4.0 * phi * phi * chi_dot * c.grad * c.grad.transpose());
+      if (req.damping_matrix) {
+        p.dx = (w * cb * phi) * c.grad * c.grad.transpose();
+        p.has_damping_matrix = true;
+      }
+    }
+  }
+  return p;
+}
+
 template <bool kBending, bool kDamping>
 void evaluate(const CableSection& sec, const CableElementReference& ref, const Vec12& e,
               const Vec12& e_dot, const CableEvalRequest& req, CableElementResult& out) {
-  using Vec6 = Eigen::Matrix<double, 6, 1>;
-  using Mat6 = Eigen::Matrix<double, 6, 6>;
   const Eigen::Map<const Mat34> E(e.data());
   const Eigen::Map<const Mat34> Edot(e_dot.data());
-  const double ea = sec.axial_stiffness, ei = sec.bending_stiffness;
-  const double ca = sec.axial_damping, cb = sec.bending_damping;
-  const int p = curvature_power(sec.strain);
+  const bool axial_damping = kDamping && sec.axial_damping > 0.0;
 
   out.energy = 0.0;
   out.force.setZero();
   if (req.stiffness) out.stiffness.setZero();
   if (kDamping && req.damping_matrix) out.damping.setZero();
 
-  for (int g = 0; g < kCableGaussPoints; ++g) {
-    const double w = ref.weight[g];
-    const Vec4& d1 = ref.d1[g];
-    const Vec3 a = E * d1;
-    const AxialStrain s = axial_strain(sec.strain, a, ref.inv_j0[g]);
-    const double n_axial = ea * (s.eps + sec.prestrain);  // axial force conjugate to ε
-    out.energy += 0.5 * w * n_axial * (s.eps + sec.prestrain);
-
-    Vec3 ga = (w * n_axial) * s.eps_a;
-    Mat3 haa = Mat3::Zero();
-    if (req.stiffness) haa = w * (ea * s.eps_a * s.eps_a.transpose() + n_axial * s.eps_aa);
-    if constexpr (kDamping) {
-      if (ca > 0.0) {
-        const Vec3 a_dot = Edot * d1;
-        const double eps_dot = s.eps_a.dot(a_dot);
-        ga += (w * ca * eps_dot) * s.eps_a;
-        if (req.stiffness)
-          haa += (w * ca) * (s.eps_a * (s.eps_aa * a_dot).transpose() + eps_dot * s.eps_aa);
-        if (req.damping_matrix)
-          scatter_matrix(d1, ((w * ca) * s.eps_a * s.eps_a.transpose()).eval(), out.damping);
-      }
+  // Bending terms at point g of ref.bending, with the axial gradient/Hessian `axial` of the same
+  // point added (one scatter of the 6-vector instead of two) when the rules coincide.
+  auto bending = [&](int g, const AxialPoint* axial) {
+    const CableElementReference::Points& pts = ref.bending;
+    const Vec4& d1 = pts.d1[g];
+    const Vec4& d2 = pts.d2[g];
+    const Vec3 a = E * d1, b = E * d2;
+    Vec6 x_dot = Vec6::Zero();
+    if constexpr (kDamping) x_dot << Edot * d1, Edot * d2;
+    BendingPoint p =
+        bending_point<kDamping>(sec, a, b, x_dot, pts.weight[g], pts.kappa0[g], req, out.energy);
+    if (axial) {
+      p.gx.template head<3>() += axial->ga;
+      if (req.stiffness) p.hx.template topLeftCorner<3, 3>() += axial->haa;
     }
+    scatter_force(d1, p.gx.template head<3>(), out.force);
+    scatter_force(d2, p.gx.template tail<3>(), out.force);
+    if (req.stiffness) scatter_matrix(d1, d2, p.hx, out.stiffness);
+    if (kDamping && p.has_damping_matrix) scatter_matrix(d1, d2, p.dx, out.damping);
+  };
 
-    if constexpr (!kBending) {
-      scatter_force(d1, ga, out.force);
-      if (req.stiffness) scatter_matrix(d1, haa, out.stiffness);
+  const bool fused = kBending && ref.shared_points;
+  for (int g = 0; g < ref.axial.count; ++g) {
+    const Vec4& d1 = ref.axial.d1[g];
+    Vec3 a_dot = Vec3::Zero();
+    if (axial_damping) a_dot = Edot * d1;
+    const AxialPoint p = axial_point<kDamping>(sec, E * d1, a_dot, ref.axial.weight[g],
+                                               ref.axial.inv_j0[g], req, out.energy);
+    if (axial_damping && req.damping_matrix) scatter_matrix(d1, p.daa, out.damping);
+    if (fused) {
+      bending(g, &p);
     } else {
-      const Vec4& d2 = ref.d2[g];
-      const Vec3 b = E * d2;
-      const CurvatureSquared c = curvature_squared(a, b, p);
-      const double kappa = std::sqrt(c.k2);
-      const double kappa_ref = ref.kappa0[g];
-      out.energy += 0.5 * w * ei * (kappa - kappa_ref) * (kappa - kappa_ref);
-      const double kappa0 = kappa > kVanishingCurvatureRatio * kappa_ref ? kappa_ref : 0.0;
-      // U_b = EI h(K²) with h = ½K² − κ₀√K² + ½κ₀²: h' = ½ − κ₀/(2κ), h'' = κ₀/(4κ³).
-      const double h1 = kappa0 > 0.0 ? 0.5 - 0.5 * kappa0 / kappa : 0.5;
-      const double h2 = kappa0 > 0.0 ? 0.25 * kappa0 / (kappa * kappa * kappa) : 0.0;
-
-      Vec6 gx = (w * ei * h1) * c.grad;
-      gx.head<3>() += ga;
-      Mat6 hx;
-      if (req.stiffness) {
-        hx = (w * ei) * (h1 * c.hess + h2 * c.grad * c.grad.transpose());
-        hx.topLeftCorner<3, 3>() += haa;
-      }
-      if constexpr (kDamping) {
-        if (cb > 0.0 && kappa > 0.0) {
-          // κ̇ = ∇κ·ẋ with ∇κ = ∇K²/(2κ), ∇²κ = ∇²K²/(2κ) − ∇K²∇K²ᵀ/(4κ³).
-          Vec6 x_dot;
-          x_dot << Edot * d1, Edot * d2;
-          const Vec6 dk = c.grad / (2.0 * kappa);
-          const double kappa_dot = dk.dot(x_dot);
-          gx += (w * cb * kappa_dot) * dk;
-          if (req.stiffness) {
-            const Mat6 hk = c.hess / (2.0 * kappa) -
-                            c.grad * c.grad.transpose() / (4.0 * kappa * kappa * kappa);
-            hx += (w * cb) * (dk * (hk * x_dot).transpose() + kappa_dot * hk);
-          }
-          if (req.damping_matrix)
-            scatter_matrix(d1, d2, ((w * cb) * dk * dk.transpose()).eval(), out.damping);
-        }
-      }
-      scatter_force(d1, gx.head<3>(), out.force);
-      scatter_force(d2, gx.tail<3>(), out.force);
-      if (req.stiffness) scatter_matrix(d1, d2, hx, out.stiffness);
+      scatter_force(d1, p.ga, out.force);
+      if (req.stiffness) scatter_matrix(d1, p.haa, out.stiffness);
     }
   }
+  if constexpr (kBending)
+    if (!fused)
+      for (int g = 0; g < ref.bending.count; ++g) bending(g, nullptr);
 }
 
 }  // namespace
 
 CableElementReference CableElementReference::from_reference(const Vec12& e0, double length,
-                                                            StrainMeasure strain) {
+                                                            StrainMeasure strain,
+                                                            const CableQuadrature& quadrature) {
   if (!(length > 0.0)) {
     throw ModelError("cable element length must be > 0 m, got " + std::to_string(length));
   }
   CableElementReference ref;
   ref.length = length;
-  const GaussRule rule = gauss_legendre_unit(kCableGaussPoints);
+  ref.shared_points = quadrature.axial == quadrature.bending;
   const Eigen::Map<const Mat34> E0(e0.data());
-  for (int g = 0; g < kCableGaussPoints; ++g) {
-    const double xi = rule.points[g];
-    ref.d1[g] = hermite::first_derivative(xi, length);
-    ref.d2[g] = hermite::second_derivative(xi, length);
-    const Vec3 a0 = E0 * ref.d1[g];
-    const Vec3 b0 = E0 * ref.d2[g];
-    const double j0 = a0.norm();
-    if (!(j0 > 1e-12)) {
-      throw ModelError("cable element reference has a vanishing slope |r_x| = " +
-                       std::to_string(j0) + " at xi = " + std::to_string(xi));
+  for (auto [points, count] :
+       {std::pair{&ref.axial, quadrature.axial}, std::pair{&ref.bending, quadrature.bending}}) {
+    if (count < 1 || count > kMaxCableGaussPoints)
+      throw ModelError("cable Gauss rule: expected 1 … " + std::to_string(kMaxCableGaussPoints) +
+                       " points per element, got " + std::to_string(count));
+    const GaussRule rule = gauss_legendre_unit(count);
+    points->count = count;
+    for (int g = 0; g < count; ++g) {
+      const double xi = rule.points[g];
+      points->d1[g] = hermite::first_derivative(xi, length);
+      points->d2[g] = hermite::second_derivative(xi, length);
+      const Vec3 a0 = E0 * points->d1[g];
+      const Vec3 b0 = E0 * points->d2[g];
+      const double j0 = a0.norm();
+      if (!(j0 > 1e-12)) {
+        throw ModelError("cable element reference has a vanishing slope |r_x| = " +
+                         std::to_string(j0) + " at xi = " + std::to_string(xi));
+      }
+      points->inv_j0[g] = 1.0 / j0;
+      points->weight[g] = rule.weights[g] * length * j0;
+      double kappa0 = std::sqrt(curvature_squared_value(a0, b0, curvature_power(strain)));
+      if (kappa0 * length <= kStraightReferenceAngle) kappa0 = 0.0;
+      points->kappa0[g] = kappa0;
     }
-    ref.inv_j0[g] = 1.0 / j0;
-    ref.weight[g] = rule.weights[g] * length * j0;
-    double kappa0 = std::sqrt(curvature_squared_value(a0, b0, curvature_power(strain)));
-    if (kappa0 * length <= kStraightReferenceAngle) kappa0 = 0.0;
-    ref.kappa0[g] = kappa0;
   }
   return ref;
 }
@@ -233,11 +289,15 @@ void evaluate_cable_element(const CableSection& section, const CableElementRefer
   const bool bending = section.has_bending();
   const bool damping = section.has_damping();
   if (bending) {
-    if (damping) evaluate<true, true>(section, ref, e, e_dot, request, out);
-    else evaluate<true, false>(section, ref, e, e_dot, request, out);
+    if (damping)
+      evaluate<true, true>(section, ref, e, e_dot, request, out);
+    else
+      evaluate<true, false>(section, ref, e, e_dot, request, out);
   } else {
-    if (damping) evaluate<false, true>(section, ref, e, e_dot, request, out);
-    else evaluate<false, false>(section, ref, e, e_dot, request, out);
+    if (damping)
+      evaluate<false, true>(section, ref, e, e_dot, request, out);
+    else
+      evaluate<false, false>(section, ref, e, e_dot, request, out);
   }
 }
 

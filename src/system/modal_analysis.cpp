@@ -45,9 +45,11 @@ std::vector<Index> selected_coordinates(const Model& model, int component) {
 }
 
 // Largest |entry| of `m` coupling a selected row/column with an unselected one, relative to
-// the largest |entry| of m.
+// the largest |entry| of m. An empty m (no constraints) couples nothing; Eigen's maxCoeff of an
+// empty matrix is undefined, so it is never asked.
 void require_decoupled(const MatX& m, const std::vector<bool>& row_kept,
                        const std::vector<bool>& col_kept, double tolerance, const char* what) {
+  if (m.size() == 0) return;
   const double scale = m.cwiseAbs().maxCoeff();
   for (Index c = 0; c < m.cols(); ++c)
     for (Index r = 0; r < m.rows(); ++r)
@@ -103,7 +105,7 @@ NaturalModes natural_modes(const Model& model, const SystemState& equilibrium,
   }
   NaturalModes out;
   out.selected_coordinates = d;
-  const double k_scale = k.cwiseAbs().maxCoeff();
+  const double k_scale = k.size() > 0 ? k.cwiseAbs().maxCoeff() : 0.0;
   out.asymmetry = k_scale > 0.0 ? (k - k.transpose()).cwiseAbs().maxCoeff() / k_scale : 0.0;
 
   // Orthonormal null-space basis: the last d − rank columns of Q in Φ_qᵀ P = Q R.

@@ -25,6 +25,12 @@ void validate_section(const std::string& cable, const CableSection& s) {
     fail("damping coefficients must be finite and >= 0");
   if (!std::isfinite(s.prestrain) || s.prestrain <= -1.0)
     fail("prestrain must be finite and > -1, got " + std::to_string(s.prestrain));
+  if (!(s.bending_damping_curvature > 0.0) || !std::isfinite(s.bending_damping_curvature))
+    fail("bending damping curvature kappa_s must be finite and > 0 1/m, got " +
+         std::to_string(s.bending_damping_curvature));
+  for (const int points : {s.quadrature.axial, s.quadrature.bending})
+    if (points < 1 || points > kMaxCableGaussPoints)
+      fail("Gauss points per element must be 1 … 5, got " + std::to_string(points));
 }
 
 void validate_geometry(const std::string& cable, const CableGeometry& g) {
@@ -436,7 +442,7 @@ Model ModelBuilder::finalize() {
     for (Index j = 0; j < pc.reference.element_count(); ++j) {
       const double l = pc.reference.element_lengths[j];
       c.elements.push_back(CableElementReference::from_reference(
-          pc.reference.element_coordinates(j), l, pc.section.strain));
+          pc.reference.element_coordinates(j), l, pc.section.strain, pc.section.quadrature));
       c.mass.push_back(hermite::mass_matrix(pc.section.mass_per_length, l));
     }
     o.cable_first.push_back(next);

@@ -33,7 +33,9 @@ class ProbeRecorder {
   ContactMonitor monitor_;
 };
 
-/// probes.csv: a header line of column names, then one line per row (%.10g), flushed per row.
+/// probes.csv: a header line of column names, then one line per row, flushed per row. Values are
+/// written at full precision: the shortest decimal that reads back (strtod) to the same double,
+/// at most 17 significant digits; nan and inf as "nan", "inf".
 class CsvWriter {
  public:
   /// Throws ModelError if the file cannot be created.

@@ -82,11 +82,20 @@ struct Scene {
   SceneNames names;
 };
 
-/// Parse, validate and build the scene in `path`. Throws SceneError (any problem with the file or
-/// the model it describes).
-[[nodiscard]] Scene load_scene(const std::string& path);
+/// Bounds load_scene applies before it builds anything (runaway work refused, run_limits.hpp).
+struct SceneLimits {
+  /// Memory the scene's cable elements may need to run [bytes]; ≤ 0: this machine's physical
+  /// memory.
+  double memory_bytes = 0.0;
+};
+
+/// Parse, validate and build the scene in `path`, which must be a regular file. Throws
+/// SceneError (any problem with the file or the model it describes, a scene with nothing to
+/// simulate, a mesh whose memory estimate exceeds limits.memory_bytes).
+[[nodiscard]] Scene load_scene(const std::string& path, const SceneLimits& limits = {});
 
 /// Same from text already in memory; `path` is used in messages and as Scene::path.
-[[nodiscard]] Scene load_scene_from_string(const std::string& text, const std::string& path);
+[[nodiscard]] Scene load_scene_from_string(const std::string& text, const std::string& path,
+                                           const SceneLimits& limits = {});
 
 }  // namespace ancf

@@ -10,7 +10,8 @@
 // with ε_p the prestrain and κ₀ the reference curvature, so any reference (straight, arc, helix)
 // is exactly stress-free when ε_p = 0. For a straight reference along its arc length J₀ = 1 and
 // κ₀ = 0, and with EI = 0 this is exactly the paper's element. Damping (Kelvin–Voigt) adds the
-// generalised force ∫ [c_a ε̇ ∂ε/∂e + c_b κ̇ ∂κ/∂e] J₀ dx.
+// generalised force ∫ [c_a ε̇ ∂ε/∂e + c_b κ̃̇ ∂κ̃/∂e] J₀ dx with the regularized curvature
+// κ̃ = √(κ² + κ_s²), which is smooth and objective (docs/formulation.md).
 #pragma once
 
 #include <array>
@@ -27,6 +28,20 @@ enum class StrainMeasure {
   elastic_line,    ///< ε = |r_x| − 1, K = r_x × r_xx / |r_x|² (Gerstmayr & Irschik 2008)
 };
 
+/// Largest Gauss–Legendre rule per term (fixed-size arrays in CableElementReference).
+inline constexpr int kMaxCableGaussPoints = 5;
+
+/// Gauss–Legendre points per element for each term, 1 … kMaxCableGaussPoints. The default 5/5
+/// integrates the Green axial force exactly (a polynomial of degree 8 in ξ, DESIGN §3) and
+/// bending with the same points. An established elastic-line code integrates axial/bending with
+/// 5/3, or reduced with 4/2; the linearized (straight, stress-free) stiffness is exact with ≥ 3
+/// axial and ≥ 2 bending points (integrands of degree 4 and 2).
+struct CableQuadrature {
+  int axial = 5;    ///< axial strain and axial damping
+  int bending = 5;  ///< curvature and bending damping
+  friend bool operator==(const CableQuadrature&, const CableQuadrature&) = default;
+};
+
 /// Section-level constitutive data of one cable (all elements of a cable share it).
 struct CableSection {
   StrainMeasure strain = StrainMeasure::green_lagrange;
@@ -35,13 +50,17 @@ struct CableSection {
   double mass_per_length = 0.0;    ///< ρA [kg/m]
   double prestrain = 0.0;          ///< ε_p [-]: the reference carries axial force EA·ε_p
   double axial_damping = 0.0;      ///< c_a [N s]: Kelvin–Voigt axial force c_a ε̇
-  double bending_damping = 0.0;    ///< c_b [N m² s]: Kelvin–Voigt bending moment c_b κ̇
+  double bending_damping = 0.0;    ///< c_b [N m² s]: Kelvin–Voigt bending moment c_b κ̃̇
+  /// κ_s [1/m] > 0: the bending damping acts on κ̃ = √(κ² + κ_s²), smooth and objective; it is
+  /// c_b κ̇ for κ ≫ κ_s and fades like (κ/κ_s)² below (docs/formulation.md, "Bending damping").
+  double bending_damping_curvature = 1.0;
   /// α [1/s]: mass-proportional (Rayleigh) damping, the distributed force −α ρA ṙ per unit length
   /// (consistent: −α M v on the cable's coordinates). Unlike Kelvin–Voigt it acts on every motion,
   /// rigid and zero-stiffness ones included (a drag against the inertial frame), so it does not
   /// conserve momentum. Applied by the system assembly, not by the element kernel.
   double mass_damping = 0.0;
-  double radius = 0.0;  ///< r [m] of the cross-section; used only by contact (> 0 there)
+  double radius = 0.0;           ///< r [m] of the cross-section; used only by contact (> 0 there)
+  CableQuadrature quadrature{};  ///< Gauss points per term (per cable)
 
   [[nodiscard]] bool has_bending() const {
     return bending_stiffness > 0.0 || bending_damping > 0.0;
@@ -59,23 +78,29 @@ struct CircularSection {
           std::numbers::pi * std::pow(diameter, 4) / 64.0};
 }
 
-/// Number of Gauss points per element. The Green axial force integrand is a polynomial of degree
-/// 8 in ξ, which 5 points integrate exactly (DESIGN §3).
-inline constexpr int kCableGaussPoints = 5;
-
 /// Per-element data that depend only on the stress-free reference: shape-function derivatives,
-/// integration weights and reference metric/curvature at each Gauss point. Built once per element.
+/// integration weights and reference metric/curvature at the Gauss points of each term. Built
+/// once per element.
 struct CableElementReference {
-  double length = 0.0;                             ///< l [m]
-  std::array<Vec4, kCableGaussPoints> d1;          ///< dS/dx at the Gauss points
-  std::array<Vec4, kCableGaussPoints> d2;          ///< d²S/dx² at the Gauss points
-  std::array<double, kCableGaussPoints> weight{};  ///< w_g · l · J₀_g (measure of J₀ dx)
-  std::array<double, kCableGaussPoints> inv_j0{};  ///< 1/J₀_g
-  std::array<double, kCableGaussPoints> kappa0{};  ///< κ₀ at the Gauss points (per strain measure)
+  /// One term's Gauss points: the first `count` entries of each array are used.
+  struct Points {
+    int count = 0;
+    std::array<Vec4, kMaxCableGaussPoints> d1;          ///< dS/dx at the Gauss points
+    std::array<Vec4, kMaxCableGaussPoints> d2;          ///< d²S/dx² at the Gauss points
+    std::array<double, kMaxCableGaussPoints> weight{};  ///< w_g · l · J₀_g (measure of J₀ dx)
+    std::array<double, kMaxCableGaussPoints> inv_j0{};  ///< 1/J₀_g
+    std::array<double, kMaxCableGaussPoints> kappa0{};  ///< κ₀ (per strain measure)
+  };
+  double length = 0.0;  ///< l [m]
+  Points axial;         ///< points of the axial terms
+  Points bending;       ///< points of the bending terms
+  /// Both terms use the same rule: the element evaluates them in one loop.
+  bool shared_points = true;
 
   /// Build from the reference nodal coordinates e0 and length l > 0. Throws ModelError if the
-  /// reference has a vanishing slope at a Gauss point.
-  static CableElementReference from_reference(const Vec12& e0, double length, StrainMeasure strain);
+  /// reference has a vanishing slope at a Gauss point or a rule is outside 1 … 5 points.
+  static CableElementReference from_reference(const Vec12& e0, double length, StrainMeasure strain,
+                                              const CableQuadrature& quadrature = {});
 };
 
 /// What to evaluate. Force and energy are always computed.
