@@ -16,6 +16,7 @@ struct Simulation::Backend {
   virtual ~Backend() = default;
   virtual const SystemState& state() const = 0;
   /// Integrate to t_out; progress after every step where the integrator reports steps.
+  /// step(t_limit): one step, ending at t_limit at the latest (Simulation::step).
   virtual void advance(double t_out, const std::function<void(double)>& progress) = 0;
   virtual void step(double t_limit) = 0;
   virtual void set_state(const VecX& q, const VecX& v) = 0;
@@ -45,6 +46,7 @@ class IdaBackend final : public Simulation::Backend {
 
   void step(double t_limit) override {
     ida_.one_step(t_limit);
+    if (ida_.time() > t_limit) ida_.advance(t_limit);  // interpolation within the last step
     problem_.unpack(ida_.time(), ida_.y(), ida_.yp(), state_);
   }
 
@@ -283,10 +285,12 @@ void Simulation::advance_to(double t, const SimulationHooks& hooks) {
   if (!finished() && time() < t) guarded([&] { backend_->advance(t, hooks.progress); });
 }
 
-void Simulation::step() {
-  if (finished()) return;
+bool Simulation::step() {
+  if (finished()) return false;
   guarded([&] { backend_->step(times_[next_]); });
-  while (!finished() && times_[next_] <= time()) ++next_;
+  if (time() < times_[next_]) return false;
+  ++next_;
+  return true;
 }
 
 void Simulation::set_state(const VecX& q, const VecX& v) {

@@ -33,6 +33,9 @@ struct SceneOverride {
 [[nodiscard]] Scene load_scene(const std::string& path, const std::vector<SceneOverride>& overrides,
                                const SceneLimits& limits = {});
 
+/// The text of the scene file `path`, with load_scene's checks (exists, a regular file).
+[[nodiscard]] std::string read_scene_text(const std::string& path);
+
 /// The scene text with `overrides` applied, as TOML (toml++'s formatting; comments dropped), for
 /// recording exactly what ran. Throws SceneError like load_scene_from_string.
 [[nodiscard]] std::string apply_scene_overrides(const std::string& text, const std::string& path,

@@ -72,10 +72,12 @@ class Simulation {
   /// generalized-α step (its later steps then differ from a run that did not stop at t); IDA
   /// interpolates, which leaves its steps unchanged.
   void advance_to(double t, const SimulationHooks& hooks = {});
-  /// One step: one accepted generalized-α step (shortened to land on the next output time); one
-  /// internal IDA step (which may end beyond the next output time; the next advance interpolates
-  /// back to it). An output time reached exactly counts as passed. Nothing when finished().
-  void step();
+  /// One step that ends at the next output time at the latest: one accepted generalized-α step
+  /// (shortened to land on it); one internal IDA step, interpolated back to the output time if
+  /// it went beyond (IDA's own steps are unchanged). Returns true when the step reached the next
+  /// output time (then passed: next_output() moves on), false otherwise and when finished().
+  /// Stepping through a run gives the same output states as advance_to_next_output, bit for bit.
+  bool step();
   /// Restart from q, v (model.coordinate_count() each) at time(): generalized-α projects them
   /// onto Φ = 0, Φ_q v + Φ_t = 0 and solves for q'' and λ; IDA makes the GGL values consistent
   /// (λ, μ and the derivatives from the DAE). Throws std::invalid_argument for wrong sizes.
