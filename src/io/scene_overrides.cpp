@@ -49,7 +49,7 @@ std::vector<PathPart> split(const std::string& path, const SceneOverride& o) {
 toml::table parse_value(const std::string& path, const SceneOverride& o) {
   try {
     const std::string text = "v = " + o.value;
-    toml::table parsed = toml::parse(text, std::string_view("override"));
+    toml::table parsed = toml::parse(text, io::kOverrideSource);
     if (parsed.size() != 1 || !parsed.contains("v")) fail(path, o, "expected one TOML value");
     return parsed;
   } catch (const toml::parse_error& e) {
