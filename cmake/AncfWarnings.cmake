@@ -7,11 +7,16 @@ if(ANCF_SANITIZE)
   target_link_options(ancf_options INTERFACE -fsanitize=address,undefined)
 endif()
 
-# ancf_add_layer(NAME sources... DEPS libs...) : one static library per architectural layer.
+# ancf_add_layer(NAME sources... DEPS libs...) : one static library per architectural layer,
+# position-independent (the Python module links them into a shared object) and installed as
+# ancf::NAME (cmake/AncfInstall.cmake). The warning options stay with the build tree.
 function(ancf_add_layer name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
   add_library(ancf_${name} STATIC ${ARG_SOURCES})
   add_library(ancf::${name} ALIAS ancf_${name})
-  target_include_directories(ancf_${name} PUBLIC ${PROJECT_SOURCE_DIR}/include)
-  target_link_libraries(ancf_${name} PUBLIC ancf_options ${ARG_DEPS})
+  set_target_properties(ancf_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON EXPORT_NAME ${name})
+  target_include_directories(ancf_${name} PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include>
+                                                 $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+  target_link_libraries(ancf_${name} PUBLIC $<BUILD_INTERFACE:ancf_options> ${ARG_DEPS})
+  set_property(GLOBAL APPEND PROPERTY ANCF_LAYERS ancf_${name})
 endfunction()

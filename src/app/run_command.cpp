@@ -9,15 +9,11 @@
 #include <fstream>
 #include <sstream>
 
-#include "ancf/io/run_metadata.hpp"
+#include "ancf/io/run_outputs.hpp"
+#include "ancf/io/run_record.hpp"
 #include "ancf/io/simulation.hpp"
 #include "commands.hpp"
 #include "progress_bar.hpp"
-#include "run_outputs.hpp"
-
-#ifndef ANCF_VERSION
-#define ANCF_VERSION "unknown"
-#endif
 
 namespace ancf::app {
 
@@ -55,13 +51,7 @@ int run_command(const RunOptions& options) {
   try {
     scene = load_scene(options.scene_path);
     apply_overrides(options, scene.integrator);
-    if (scene.integrator.kind == IntegratorKind::genalpha &&
-        scene.integrator.step > scene.integrator.t_end)
-      throw ModelError("--step exceeds t_end");
-    const StepControllerOptions& c = scene.integrator.ga_controller;
-    if (c.h_max > 0.0 && c.h_max < c.h_min)
-      throw ModelError("generalized-alpha h_max (--h-max) is below h_min (--h-min)");
-    require_bounded_steps(scene.integrator, scene.output.interval, options.max_steps);
+    require_runnable(scene.integrator, scene.output.interval, options.max_steps);
   } catch (const ModelError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 1;
@@ -98,43 +88,15 @@ int run_command(const RunOptions& options) {
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  JsonObject opts, counts, results, meta, times;
-  opts.set("integrator", ida ? "ida" : "genalpha").set("rtol", s.rtol).set("t_end", s.t_end);
-  opts.set("contact_pattern", s.contact_pattern == ContactPatternPolicy::all ? "all" : "near");
-  if (ida)
-    opts.set("max_step", s.max_step).set("max_order", static_cast<long>(s.max_order));
-  else
-    opts.set("step", s.step)
-        .set("rho_infinity", s.rho_infinity)
-        .set("formulation", s.stabilized_index2 ? "stabilized_index2" : "index3")
-        .set("stepping", s.ga_error_controlled ? "error_controlled" : "fixed");
-  if (!ida && s.ga_error_controlled)
-    opts.set("error_rtol", s.ga_controller.rtol)
-        .set("error_atol", s.ga_controller.atol)
-        .set("h_min", s.ga_controller.h_min)
-        .set("h_max", s.ga_controller.h_max);
-  opts.set("output_interval", scene.output.interval).set("out", options.out_dir);
-  for (const auto& [name, value] : counters) counts.set(name, value);
-  for (const auto& [name, value] : timings) times.set(name, value);
-  if (out)
-    results.set("frames", out->frames())
-        .set("t_reached", out->last_time())
-        .set("initial_energy", out->initial_energy())
-        .set("final_energy", out->final_energy())
-        .set("max_energy_change", out->max_energy_change())
-        .set("max_position_violation", out->max_position_violation())
-        .set("max_velocity_violation", out->max_velocity_violation());
-  meta.set("ancf_version", ANCF_VERSION)
-      .set("scene", options.scene_path)
-      .set("scene_name", scene.name)
-      .set("scene_fnv1a64", fmt::format("{:016x}", fnv1a64(text)))
-      .set("status", status)
-      .set("message", message)
-      .set("wall_time_s", wall)
-      .set("options", opts)
-      .set("counters", counts)
-      .set("time_s", times)
-      .set("results", results);
+  RunRecord record{.scene_path = options.scene_path,
+                   .scene_text = text,
+                   .out_dir = options.out_dir,
+                   .status = status,
+                   .message = message,
+                   .wall_seconds = wall,
+                   .counters = counters,
+                   .timings = timings};
+  const JsonObject meta = run_json(scene, record, out ? &*out : nullptr);
   if (out) std::ofstream(options.out_dir + "/run.json") << meta.text() << '\n';
 
   if (!options.quiet && out) {

@@ -54,4 +54,13 @@ void require_bounded_steps(const IntegratorSettings& s, double output_interval, 
   }
 }
 
+void require_runnable(const IntegratorSettings& s, double output_interval, double max_steps) {
+  if (s.kind == IntegratorKind::genalpha && s.step > s.t_end)
+    throw ModelError("--step exceeds t_end");
+  const StepControllerOptions& c = s.ga_controller;
+  if (c.h_max > 0.0 && c.h_max < c.h_min)
+    throw ModelError("generalized-alpha h_max (--h-max) is below h_min (--h-min)");
+  require_bounded_steps(s, output_interval, max_steps);
+}
+
 }  // namespace ancf

@@ -20,6 +20,10 @@ std::string first_named_constraint(const std::string& message) {
                                 : message.substr(a + tag.size(), b - a - tag.size());
 }
 
+}  // namespace
+
+namespace io {
+
 Scene build_scene(const toml::table& root_table, const std::string& path,
                   const SceneLimits& limits) {
   io::SceneBuild b(path, limits);
@@ -61,22 +65,17 @@ Scene build_scene(const toml::table& root_table, const std::string& path,
   return scene;
 }
 
-}  // namespace
-
-Scene load_scene_from_string(const std::string& text, const std::string& path,
-                             const SceneLimits& limits) {
-  toml::table root;
+toml::table parse_scene_text(const std::string& text, const std::string& path) {
   try {
-    root = toml::parse(text, path);
+    return toml::parse(text, path);
   } catch (const toml::parse_error& e) {
     throw SceneError(path, static_cast<int>(e.source().begin.line),
                      static_cast<int>(e.source().begin.column), "",
                      "TOML syntax error: " + std::string(e.description()));
   }
-  return build_scene(root, path, limits);
 }
 
-Scene load_scene(const std::string& path, const SceneLimits& limits) {
+std::string read_scene_file(const std::string& path) {
   // A directory opens as an empty stream on Linux and would read as an empty scene.
   std::error_code error;
   const auto status = std::filesystem::status(path, error);
@@ -91,7 +90,18 @@ Scene load_scene(const std::string& path, const SceneLimits& limits) {
   if (!in) throw SceneError(path, 0, 0, "", "cannot open the scene file");
   std::ostringstream text;
   text << in.rdbuf();
-  return load_scene_from_string(text.str(), path, limits);
+  return text.str();
+}
+
+}  // namespace io
+
+Scene load_scene_from_string(const std::string& text, const std::string& path,
+                             const SceneLimits& limits) {
+  return io::build_scene(io::parse_scene_text(text, path), path, limits);
+}
+
+Scene load_scene(const std::string& path, const SceneLimits& limits) {
+  return load_scene_from_string(io::read_scene_file(path), path, limits);
 }
 
 }  // namespace ancf

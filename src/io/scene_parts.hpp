@@ -75,4 +75,10 @@ IntegratorSettings read_integrator(TableReader& root);
 /// Needs the finalized model to resolve probe targets' node indices.
 OutputSettings read_output(TableReader& root, SceneBuild& b);
 
+/// The loader's stages (scene_loader.cpp), shared with the overrides (scene_overrides.cpp):
+/// the file's text (regular files only), its TOML (syntax errors located), the Scene built from it.
+std::string read_scene_file(const std::string& path);
+toml::table parse_scene_text(const std::string& text, const std::string& path);
+Scene build_scene(const toml::table& root, const std::string& path, const SceneLimits& limits);
+
 }  // namespace ancf::io

@@ -30,10 +30,14 @@ std::string type_name(const toml::node& node) {
   }
 }
 
+bool from_file(const toml::source_region& r) {
+  return !(r.path && *r.path == kOverrideSource);
+}
+
 void fail_at(const std::string& file, const toml::node* node, const std::string& key,
              const std::string& message) {
   int line = 0, column = 0;
-  if (node) {
+  if (node && from_file(node->source())) {
     line = static_cast<int>(node->source().begin.line);
     column = static_cast<int>(node->source().begin.column);
   }
@@ -96,16 +100,15 @@ void TableReader::fail_here(const std::string& message) const {
 }
 
 int TableReader::line() const {
-  return static_cast<int>(table_->source().begin.line);
+  return from_file(table_->source()) ? static_cast<int>(table_->source().begin.line) : 0;
 }
 
 void TableReader::finish() const {
   for (auto&& [k, v] : *table_) {
     if (used_.count(k.str())) continue;
-    const int line =
-        static_cast<int>(k.source().begin.line ? k.source().begin.line : v.source().begin.line);
-    const int column =
-        static_cast<int>(k.source().begin.line ? k.source().begin.column : v.source().begin.column);
+    const toml::source_region& where = k.source().begin.line ? k.source() : v.source();
+    const int line = from_file(where) ? static_cast<int>(where.begin.line) : 0;
+    const int column = from_file(where) ? static_cast<int>(where.begin.column) : 0;
     throw SceneError(*file_, line, column, path_of(k.str()),
                      "unknown key '" + std::string(k.str()) + "'" +
                          (path_.empty() ? std::string() : " in " + path_) +

@@ -19,6 +19,12 @@ namespace ancf::io {
 /// Admissible range of a number (always also finite).
 enum class Range { any, positive, non_negative, unit_interval };
 
+/// Source name of values set by a scene override (scene_overrides.cpp): they have no line in
+/// the file, so errors about them carry line 0 and their key path.
+inline constexpr std::string_view kOverrideSource = "<scene override>";
+/// False for a region parsed from an override.
+[[nodiscard]] bool from_file(const toml::source_region& region);
+
 /// "a string", "an integer", … for messages.
 [[nodiscard]] std::string type_name(const toml::node& node);
 

@@ -362,10 +362,12 @@ void GeneralizedAlphaStepper::step(double t_limit) {
           ++stats_.error_test_failures;
           ++stats_.rejected_steps;
           if (h <= h_min * (1.0 + 1e-12))
-            throw SolverError(fmt::format(
-                "generalized-α: local error estimate {:.3e} > 1 at t = {:.9g} with h = h_min = "
-                "{:.3e}; loosen the error tolerances or lower h_min",
-                err, t_, h));
+            throw GeneralizedAlphaFailure(
+                fmt::format(
+                    "generalized-α: local error estimate {:.3e} > 1 at t = {:.9g} with h = h_min "
+                    "= {:.3e}; loosen the error tolerances or lower h_min",
+                    err, t_, h),
+                t_, h, "-");
           h_ = d.h_next;
           retried_stale = false;
           continue;
@@ -399,13 +401,14 @@ void GeneralizedAlphaStepper::step(double t_limit) {
       Index worst = -1;
       const double norm = increment_norm(&worst);
       const std::string where = worst < 0 ? std::string("-") : problem_.describe_row(worst);
-      throw SolverError(fmt::format(
-          "generalized-α: Newton failed at t = {:.9g} with h = {:.3e} ({}); last weighted "
-          "increment norm {:.3e}, largest at {}",
-          t_, h,
-          adaptive() ? std::string("h_min reached")
-                     : fmt::format("after {} step halvings", options_.max_step_halvings),
-          norm, where));
+      throw GeneralizedAlphaFailure(
+          fmt::format("generalized-α: Newton failed at t = {:.9g} with h = {:.3e} ({}); last "
+                      "weighted increment norm {:.3e}, largest at {}",
+                      t_, h,
+                      adaptive() ? std::string("h_min reached")
+                                 : fmt::format("after {} step halvings", options_.max_step_halvings),
+                      norm, where),
+          t_, h, where);
     }
     if (adaptive()) {
       ++stats_.rejected_steps;

@@ -424,11 +424,15 @@ std::span<const double> IdaIntegrator::yp() const {
   return view(impl_->yp.get());
 }
 
-IdaStop IdaIntegrator::advance(double t_out) {
+IdaStop IdaIntegrator::advance(double t_out) { return solve(t_out, IDA_NORMAL); }
+
+IdaStop IdaIntegrator::one_step(double t_out) { return solve(t_out, IDA_ONE_STEP); }
+
+IdaStop IdaIntegrator::solve(double t_out, int task) {
   Impl& s = *impl_;
   realtype t_reached = t_;
   const auto start = std::chrono::steady_clock::now();
-  const int flag = IDASolve(s.mem.get(), t_out, &t_reached, s.y.get(), s.yp.get(), IDA_NORMAL);
+  const int flag = IDASolve(s.mem.get(), t_out, &t_reached, s.y.get(), s.yp.get(), task);
   s.wall_time += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   t_ = t_reached;
   if (s.fatal) std::rethrow_exception(std::exchange(s.fatal, nullptr));

@@ -32,4 +32,9 @@ inline constexpr double kDefaultMaxSteps = 1e7;
 void require_bounded_steps(const IntegratorSettings& settings, double output_interval,
                            double max_steps);
 
+/// What a run checks before it starts (`ancf run` after its command-line overrides, the Python
+/// module): a generalized-α step not above t_end ("--step exceeds t_end"), h_max not below h_min,
+/// and require_bounded_steps. Throws ModelError.
+void require_runnable(const IntegratorSettings& settings, double output_interval, double max_steps);
+
 }  // namespace ancf

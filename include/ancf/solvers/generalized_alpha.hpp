@@ -51,7 +51,9 @@
 
 #include <limits>
 #include <string>
+#include <utility>
 
+#include "ancf/core/error.hpp"
 #include "ancf/core/klu_solver.hpp"
 #include "ancf/core/second_order_problem.hpp"
 #include "ancf/solvers/step_controller.hpp"
@@ -181,6 +183,22 @@ struct GeneralizedAlphaStatistics {
 /// whenever problem.update_pattern() reports a change: it is asked before every matrix
 /// evaluation with the step size as horizon) and the state (t, q, v, q'', a, λ). No heap allocation
 /// per step. Ownership: keeps a reference to `problem`, which must outlive the stepper.
+/// A step that could not be completed (Newton failure after the allowed halvings, local error
+/// above tolerance at h_min): the time of the last accepted state, the step size tried and the
+/// unknown with the largest weighted Newton increment ("-" when not known), also in what().
+class GeneralizedAlphaFailure : public SolverError {
+ public:
+  GeneralizedAlphaFailure(const std::string& message, double t, double step, std::string component)
+      : SolverError(message), t_(t), step_(step), component_(std::move(component)) {}
+  [[nodiscard]] double time() const { return t_; }          ///< [s]
+  [[nodiscard]] double step_size() const { return step_; }  ///< [s]
+  [[nodiscard]] const std::string& component() const { return component_; }
+
+ private:
+  double t_, step_;
+  std::string component_;
+};
+
 class GeneralizedAlphaStepper {
  public:
   /// Throws std::invalid_argument for bad options, and for index 3 with ρ∞ = 1 (unstable).

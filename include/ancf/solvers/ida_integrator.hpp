@@ -76,7 +76,7 @@ struct IdaStatistics {
   long steps = 0, residual_evaluations = 0, jacobian_evaluations = 0, linear_solver_setups = 0;
   long nonlinear_iterations = 0, error_test_failures = 0, convergence_failures = 0;
   long root_evaluations = 0, klu_repivots = 0, reinitializations = 0;
-  long pattern_changes = 0;    ///< Jacobian pattern changes (contact pairs near, DESIGN §5)
+  long pattern_changes = 0;  ///< Jacobian pattern changes (contact pairs near, DESIGN §5)
   /// ancf_klu only (0 with sundials_klu): numeric factorizations with fresh pivoting, and in the
   /// first pivot order; wall time in KLU analysis + factorization and in solves [s].
   long full_factorizations = 0, refactorizations = 0;
@@ -143,6 +143,10 @@ class IdaIntegrator {
 
   /// Integrate to t_out (> time()), or to an earlier root / the stop time. Throws IdaFailure.
   IdaStop advance(double t_out);
+  /// One internal step towards t_out (IDA_ONE_STEP): time() is then where the step ended, which
+  /// may lie beyond t_out (a later advance(t_out) interpolates back to it), never beyond the stop
+  /// time. Throws IdaFailure.
+  IdaStop one_step(double t_out);
   /// advance() through options.output_times, calling `observer` at each output time; roots go to
   /// `on_event` (without one, integration resumes). Returns early on EventAction::stop or at the
   /// stop time. On failure the observer has seen every output before it, and IdaFailure is thrown.
@@ -164,6 +168,7 @@ class IdaIntegrator {
   [[nodiscard]] Index worst_local_error(double& weighted) const;
 
  private:
+  IdaStop solve(double t_out, int task);  // IDASolve with IDA_NORMAL or IDA_ONE_STEP
   struct Impl;
   IdaOptions options_;  // before impl_, which refers to it
   std::unique_ptr<Impl> impl_;

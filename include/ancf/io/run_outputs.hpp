@@ -10,7 +10,7 @@
 #include "ancf/io/scene.hpp"
 #include "ancf/io/vtk_writer.hpp"
 
-namespace ancf::app {
+namespace ancf {
 
 class RunOutputs {
  public:
@@ -42,4 +42,4 @@ class RunOutputs {
   double max_position_violation_ = 0.0, max_velocity_violation_ = 0.0;
 };
 
-}  // namespace ancf::app
+}  // namespace ancf

@@ -1,4 +1,4 @@
-#include "run_outputs.hpp"
+#include "ancf/io/run_outputs.hpp"
 
 #include <fmt/format.h>
 
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <filesystem>
 
-namespace ancf::app {
+namespace ancf {
 
 namespace {
 
@@ -58,4 +58,4 @@ void RunOutputs::record(const SystemState& state) {
   }
 }
 
-}  // namespace ancf::app
+}  // namespace ancf

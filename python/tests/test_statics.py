@@ -1,0 +1,75 @@
+"""Statics and modes through the library's solvers, on builder scenes."""
+
+import numpy as np
+import pytest
+
+import ancf
+
+# Mattiasson (1981), k = P L²/EI = 1: tip shortening u/L, deflection w/L, rotation [rad]
+# (REFERENCES §1; test/test_statics_reference.cpp runs the same case in C++).
+MATTIASSON_K1 = (0.05643324, 0.30172077, 0.46135195)
+# First clamped-free Euler–Bernoulli eigenvalue (βL)² = 1.87510406871196².
+BETA1_SQUARED = 1.87510406871196**2
+
+
+def cantilever(elements, tip_force=0.0, gravity=0.0):
+    """L = 1 m, EI = 1 N m², EA = 1e7 N (EA L²/EI = 1e7: extensibility error O(P/EA) ~ 1e-7),
+    ρA = 1 kg/m, clamped at x = 0."""
+    b = ancf.SceneBuilder("cantilever", gravity=[0.0, 0.0, gravity])
+    b.cable(name="beam", elements=elements,
+            geometry={"kind": "straight", "start": [0, 0, 0], "end": [1, 0, 0]},
+            section={"EA": 1e7, "EI": 1.0, "mass_per_length": 1.0})
+    b.joint(name="root", kind="clamp", at={"cable": "beam", "node": 0})
+    if tip_force:
+        b.load(kind="force", at={"cable": "beam", "node": -1}, force=[0.0, -tip_force, 0.0])
+    return b.build()
+
+
+def test_mattiasson_cantilever():
+    """64 elements, as the C++ reference test: relative errors below its 1e-5 target."""
+    n = 64
+    r = ancf.solve_statics(cantilever(n, tip_force=1.0), load_steps=4)
+    q = r["q"]
+    tip, slope = q[6 * n:6 * n + 3], q[6 * n + 3:6 * n + 6]
+    u, w, rotation = 1.0 - tip[0], -tip[1], np.arctan2(-slope[1], slope[0])
+    for value, ref in zip((u, w, rotation), MATTIASSON_K1):
+        assert abs(value - ref) < 1e-5 * ref
+    assert tip[2] == 0.0  # planar
+    s = r["statistics"]
+    assert s["load_steps"] == 4 and s["newton_iterations"] > 0 and s["residual_norm"] < 1e-6
+    assert r["lam"].shape == (5,)  # clamp: position and slope direction
+
+
+def test_natural_modes_converge_at_fourth_order():
+    """The first bending frequency of the clamped beam against Euler–Bernoulli: cubic Hermite
+    elements converge as h⁴ (a factor 16 per halving, observed 15.7 and 15.9)."""
+    errors = []
+    for n in (4, 8, 16):
+        m = ancf.natural_modes(cantilever(n), component=1)
+        errors.append(abs(m["omega"][0] - BETA1_SQUARED) / BETA1_SQUARED)
+        coords = cantilever(n).info()["coordinates"]
+        assert m["shapes"].shape[0] == coords
+        assert m["frequency_hz"][0] == pytest.approx(m["omega"][0] / (2 * np.pi))
+        assert np.all(np.diff(m["omega_squared"]) >= 0)
+    for coarse, fine in zip(errors, errors[1:]):
+        assert 12.0 < coarse / fine < 20.0  # order 4 within ±0.4 of the exponent
+
+
+def test_modes_at_a_static_equilibrium():
+    """A hanging cantilever under gravity: modes at the solved equilibrium (q and λ)."""
+    scene = cantilever(8, gravity=-1.0)
+    eq = ancf.solve_statics(scene, load_steps=2)
+    m = ancf.natural_modes(scene, q=eq["q"], lam=eq["lam"])
+    assert m["omega"][0] > 0 and m["constraint_rank"] == 5
+    with pytest.raises(ValueError, match="q"):
+        ancf.natural_modes(scene, q=np.zeros(3))
+
+
+def test_singular_statics_is_a_solver_error():
+    b = ancf.SceneBuilder("free", gravity=[0.0, 0.0, -9.81])
+    b.cable(name="c", elements=2, geometry={"kind": "straight", "start": [0, 0, 0],
+                                            "end": [1, 0, 0]},
+            section={"EA": 1e3, "EI": 1.0, "mass_per_length": 1.0})
+    with pytest.raises(ancf.SolverError, match="singular") as e:
+        ancf.solve_statics(b.build())
+    assert e.value.time is None and "cable 'c'" in str(e.value)
