@@ -35,6 +35,7 @@
 
 #include "ancf/io/run_metadata.hpp"
 #include "ancf/io/scene.hpp"
+#include "ancf/io/scene_overrides.hpp"
 #include "ancf/io/simulation.hpp"
 #include "ancf/scenes/capture_events.hpp"
 #include "capture_mesh.hpp"
@@ -177,20 +178,6 @@ std::string apply_overrides(const Options& o) {
     integrator.at(group).as_table()->insert_or_assign(o.integrator == "ida" ? "max_step" : "step", o.step);
   }
   if (!o.contact_pattern.empty()) integrator.insert_or_assign("contact_pattern", o.contact_pattern);
-  for (const auto& [key, text] : o.settings) {
-    // Walk the dotted path below [integrator], creating tables; the value is parsed as TOML.
-    toml::table* table = &integrator;
-    std::string path = key;
-    for (auto dot = path.find('.'); dot != std::string::npos; dot = path.find('.')) {
-      const std::string part = path.substr(0, dot);
-      if (!table->contains(part)) table->insert_or_assign(part, toml::table{});
-      table = table->at(part).as_table();
-      if (!table) throw std::invalid_argument("--set " + key + ": " + part + " is not a table");
-      path = path.substr(dot + 1);
-    }
-    toml::table parsed = toml::parse("v = " + text);
-    table->insert_or_assign(path, *parsed.get("v"));
-  }
   std::ostringstream text;
   text << root;
   return text.str();
@@ -223,7 +210,10 @@ int main(int argc, char** argv) {
   Scene scene;
   try {
     o = parse(argc, argv);
-    scene = load_scene_from_string(apply_overrides(o), o.scene);
+    // --set KEY=VALUE below [integrator]: the io layer's scene overrides (scene_overrides.hpp).
+    std::vector<SceneOverride> settings;
+    for (const auto& [key, text] : o.settings) settings.push_back({"integrator." + key, text});
+    scene = load_scene_from_string(apply_overrides(o), o.scene, settings);
   } catch (const std::exception& e) {
     fmt::print(stderr, "ancf-capture: {}\n", e.what());
     return 1;

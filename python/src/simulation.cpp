@@ -151,9 +151,11 @@ class PySimulation {
 
  private:
   void record() {
-    const std::vector<double>& row = recorder_.evaluate(sim_->state(), workspace_);
-    rows_.insert(rows_.end(), row.begin(), row.end());
+    // With outputs, their recorder has evaluated the probes already (the same code and state).
     if (outputs_) outputs_->record(sim_->state());
+    const std::vector<double>& row =
+        outputs_ ? outputs_->probes().last_row() : recorder_.evaluate(sim_->state(), workspace_);
+    rows_.insert(rows_.end(), row.begin(), row.end());
     if (sim_->finished() && status_ == "running") {
       status_ = "completed";
       write_record();

@@ -121,7 +121,9 @@ Scene load_scene(const std::string& path, const std::vector<SceneOverride>& over
   return load_scene_from_string(io::read_scene_file(path), path, overrides, limits);
 }
 
-std::string read_scene_text(const std::string& path) { return io::read_scene_file(path); }
+std::string read_scene_text(const std::string& path) {
+  return io::read_scene_file(path);
+}
 
 std::string apply_scene_overrides(const std::string& text, const std::string& path,
                                   const std::vector<SceneOverride>& overrides) {

@@ -9,8 +9,8 @@
 
 int main(int argc, char** argv) {
   if (argc != 2) return 2;
-  const ancf::Scene scene = ancf::load_scene(
-      argv[1], {{"cable[0].elements", "4"}, {"integrator.t_end", "0.02"}});
+  const ancf::Scene scene =
+      ancf::load_scene(argv[1], {{"cable[0].elements", "4"}, {"integrator.t_end", "0.02"}});
   ancf::Simulation run(scene.model, scene.integrator,
                        ancf::output_times(scene.output.interval, scene.integrator.t_end));
   while (run.advance_to_next_output()) {

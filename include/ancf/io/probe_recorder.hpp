@@ -24,6 +24,8 @@ class ProbeRecorder {
   /// times of contact_monitor().
   [[nodiscard]] const std::vector<double>& evaluate(const SystemState& state, Workspace& ws);
   [[nodiscard]] const ContactMonitor& contact_monitor() const { return monitor_; }
+  /// The values of the last evaluate() (empty before the first).
+  [[nodiscard]] const std::vector<double>& last_row() const { return row_; }
 
  private:
   const Model& model_;

@@ -75,9 +75,10 @@ class Simulation {
   /// One step that ends at the next output time at the latest: one accepted generalized-α step
   /// (shortened to land on it); one internal IDA step, interpolated back to the output time if
   /// it went beyond (IDA's own steps are unchanged; the call after such an output returns the
-  /// end of the IDA step that passed it, without a new step). Returns true when the step reached the next
-  /// output time (then passed: next_output() moves on), false otherwise and when finished().
-  /// Stepping through a run gives the same output states as advance_to_next_output, bit for bit.
+  /// end of the IDA step that passed it, without a new step). Returns true when the step reached
+  /// the next output time (then passed: next_output() moves on), false otherwise and when
+  /// finished(). Stepping through a run gives the same output states as advance_to_next_output, bit
+  /// for bit.
   bool step();
   /// Restart from q, v (model.coordinate_count() each) at time(): generalized-α projects them
   /// onto Φ = 0, Φ_q v + Φ_t = 0 and solves for q'' and λ; IDA makes the GGL values consistent
