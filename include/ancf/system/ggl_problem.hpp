@@ -62,6 +62,11 @@ class GglProblem final : public DaeProblem {
   [[nodiscard]] const SparsityPattern& jacobian_pattern() const override { return pattern_; }
   /// ContactPattern::update at (t, q, v) of y; rebuilds the GGL pattern when it changed.
   bool update_jacobian_pattern(double t, std::span<const double> y, double horizon) override;
+  /// Rods keep history: IDA returns after every step so that it is committed (rod_history.hpp).
+  [[nodiscard]] bool keeps_history() const override { return model_.has_rods(); }
+  void commit_step(double, std::span<const double> y) override {
+    commit_rod_history(model_, y, workspace_.rods, kRodCommitTurn);
+  }
   void residual(double t, std::span<const double> y, std::span<const double> yp,
                 std::span<double> r) override;
   void jacobian(double t, std::span<const double> y, std::span<const double> yp, double c_j,

@@ -44,6 +44,10 @@ class MultibodyProblem final : public SecondOrderProblem {
   [[nodiscard]] double energy(double t, std::span<const double> q,
                               std::span<const double> v) override;
   [[nodiscard]] std::string describe_row(Index i) const override { return model_.describe_row(i); }
+  /// Commits the rod history at the accepted state (rod_history.hpp).
+  void commit_step(double, std::span<const double> q, std::span<const double>) override {
+    commit_rod_history(model_, q, workspace_.rods, kRodCommitTurn);
+  }
   /// Hash of the active contact samples of the last residual() (Workspace).
   [[nodiscard]] std::uint64_t active_set_signature() const override {
     return workspace_.active_contact_signature;
