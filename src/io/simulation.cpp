@@ -17,6 +17,7 @@ void run_ida(const Model& model, const IntegratorSettings& s, const std::vector<
   GglScales scales;
   if (s.ida_slope_position_scale) scales.slope = SlopeScale::position_equivalent;
   GglProblem problem(model, scales, ContactPatternOptions{.policy = s.contact_pattern});
+  problem.set_cable_tangent(s.cable_tangent);
   IdaOptions o;
   o.rtol = s.rtol;
   o.atol_position = s.ida_atol_position;
@@ -76,6 +77,7 @@ void run_ida(const Model& model, const IntegratorSettings& s, const std::vector<
 void run_genalpha(const Model& model, const IntegratorSettings& s, const std::vector<double>& times,
                   const SimulationHooks& hooks, SimulationCounters& c, SimulationTimings& timings) {
   MultibodyProblem problem(model, ContactPatternOptions{.policy = s.contact_pattern});
+  problem.set_cable_tangent(s.cable_tangent);
   GeneralizedAlphaOptions o;
   o.step_size = s.step;
   o.rho_infinity = s.rho_infinity;
@@ -94,6 +96,7 @@ void run_genalpha(const Model& model, const IntegratorSettings& s, const std::ve
   o.refresh_on_active_set_change = s.ga_refresh_on_contact_change;
   o.max_damping_halvings = s.ga_max_damping_halvings;
   o.filter_error_estimate = s.ga_filter_error_estimate;
+  o.max_reuse_rate = s.ga_max_reuse_rate;
   GeneralizedAlphaStepper ga(problem, o);
   SystemState state = SystemState::initial(model);
   auto snapshot = [&] {

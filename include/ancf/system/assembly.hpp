@@ -52,6 +52,8 @@ struct Workspace {
   /// Wall time [s] in the cable element kernels (forces and matrices) and in the contact
   /// detection and kernels, cumulative: the time shares of a run.
   double element_seconds = 0.0, contact_seconds = 0.0;
+  /// Tangent of the cable kernels in iteration matrices (CableTangent; residuals are exact).
+  CableTangent cable_tangent = CableTangent::exact;
   explicit Workspace(const Model& model);
   /// Frame kinematics at t (recomputed only when t changes).
   std::span<const FrameKinematics> frames_at(const Model& model, double t);
@@ -104,8 +106,7 @@ struct MatrixScatter {
 /// the same code path, so both matrices agree term by term. Each cable element kernel runs once.
 void add_iteration_matrix(const Model& model, const SystemState& state,
                           const IterationWeights& weights, const MatrixScatter& scatter,
-                          const ContactCoupling* coupling, Workspace& ws,
-                          std::span<double> values);
+                          const ContactCoupling* coupling, Workspace& ws, std::span<double> values);
 
 /// Φ_q v + Φ_t (size m): the velocity-level constraint.
 void assemble_velocity_constraint(const Model& model, const SystemState& state, Workspace& ws,
