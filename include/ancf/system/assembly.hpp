@@ -57,6 +57,8 @@ struct Workspace {
   /// Wall time [s] in the cable element kernels (forces and matrices) and in the contact
   /// detection and kernels, cumulative: the time shares of a run.
   double element_seconds = 0.0, contact_seconds = 0.0;
+  /// Tangent of the cable kernels in iteration matrices (CableTangent; residuals are exact).
+  CableTangent cable_tangent = CableTangent::exact;
   explicit Workspace(const Model& model);
   /// Frame kinematics at t (recomputed only when t changes).
   std::span<const FrameKinematics> frames_at(const Model& model, double t);

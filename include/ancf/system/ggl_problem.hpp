@@ -95,6 +95,9 @@ class GglProblem final : public DaeProblem {
   [[nodiscard]] const ContactPattern& contact_pattern() const { return contact_; }
   /// The scratch workspace, for its counters (contact samples, kernel times).
   [[nodiscard]] const Workspace& workspace() const { return workspace_; }
+  /// Tangent of the cable elements in the iteration matrix (CableTangent; default exact). The
+  /// residual does not depend on it.
+  void set_cable_tangent(CableTangent tangent) { workspace_.cable_tangent = tangent; }
   /// First index of each part of y.
   [[nodiscard]] Index velocity_offset() const { return n_; }
   [[nodiscard]] Index lambda_offset() const { return 2 * n_; }

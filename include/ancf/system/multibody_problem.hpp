@@ -63,6 +63,9 @@ class MultibodyProblem final : public SecondOrderProblem {
   [[nodiscard]] const ContactPattern& contact_pattern() const { return contact_; }
   /// The scratch workspace, for its counters (contact samples, kernel times).
   [[nodiscard]] const Workspace& workspace() const { return workspace_; }
+  /// Tangent of the cable elements in the iteration matrix (CableTangent; default exact). The
+  /// residual does not depend on it.
+  void set_cable_tangent(CableTangent tangent) { workspace_.cable_tangent = tangent; }
   /// Wall time spent in residual() and in iteration_matrix() [s], cumulative.
   [[nodiscard]] double residual_seconds() const { return residual_seconds_; }
   [[nodiscard]] double matrix_seconds() const { return matrix_seconds_; }
