@@ -104,6 +104,7 @@ TEST(AncfRun, GeneralizedAlphaErrorControlledRun) {
   const std::string json = text(out / "run.json");
   EXPECT_NE(json.find("\"stepping\": \"error_controlled\""), std::string::npos) << json;
   EXPECT_NE(json.find("\"error_rtol\": 0.001"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"cable_tangent\": \"exact\""), std::string::npos) << json;
   EXPECT_NE(json.find("\"rejected steps\""), std::string::npos) << json;
   EXPECT_NE(json.find("\"error test failures\""), std::string::npos) << json;
   const fs::path refused = fs::temp_directory_path() / "ancf_smoke_genalpha_hmax";

@@ -3,12 +3,15 @@
 // of internal forces in a free system, and redundancy detection.
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <chrono>
 #include <cstdio>
 #include <random>
 
 #include "ancf/core/error.hpp"
 #include "ancf/system/assembly.hpp"
+#include "ancf/system/cable_geometry.hpp"
+#include "ancf/system/model_builder.hpp"
 #include "dense_matrix.hpp"
 #include "fd_check.hpp"
 #include "multibody_scenes.hpp"
@@ -222,6 +225,43 @@ TEST(MassDamping, RigidTranslationFeelsAlphaTimesMassTimesVelocity) {
   std::printf("  rigid translation: |resultant - alpha m v0| %.2e, tolerance %.2e\n",
               (position_rows - expected).norm(), tol);
   EXPECT_LT((position_rows - expected).norm(), tol);
+}
+
+// The cable tangent chosen in the Workspace (CableTangent) reaches the assembled matrix and
+// nothing else: the residual is the same; a stretched EI = 0 cable gets the exact matrix, a
+// uniformly compressed one a positive semidefinite stiffness (no compressive geometric term)
+// where the exact one has negative eigenvalues.
+TEST(CableTangentOption, ReachesTheIterationMatrixOnly) {
+  CableSection s;
+  s.axial_stiffness = 3e5;
+  s.mass_per_length = 0.02;
+  ModelBuilder b;
+  b.add_cable("rope", straight_cable(Vec3::Zero(), 0.3 * Vec3::UnitX(), 4), s);
+  const Model model = b.finalize();
+  const Index size = model.system_size();
+  for (const double stretch : {1.01, 0.99}) {
+    SystemState state = SystemState::initial(model);
+    state.q *= stretch;  // positions along x and slopes: uniform axial strain stretch − 1
+    VecX r_exact(size), r_tension(size), values(model.pattern().nonzeros());
+    Workspace exact(model), tension(model);
+    tension.cable_tangent = CableTangent::tension_only;
+    assemble_residual(model, state, 1.0, exact, as_span(r_exact));
+    assemble_residual(model, state, 1.0, tension, as_span(r_tension));
+    EXPECT_EQ(r_exact, r_tension);
+    assemble_iteration_matrix(model, state, IterationWeights{}, exact, as_span(values));
+    const MatX k_exact = dense(model.pattern(), values);
+    assemble_iteration_matrix(model, state, IterationWeights{}, tension, as_span(values));
+    const MatX k_tension = dense(model.pattern(), values);
+    const double scale = k_exact.cwiseAbs().maxCoeff();
+    if (stretch > 1.0) {
+      EXPECT_EQ(k_exact, k_tension);
+    } else {
+      const Eigen::SelfAdjointEigenSolver<MatX> ee(k_exact), et(k_tension);
+      EXPECT_LT(ee.eigenvalues().minCoeff(), -1e-3 * scale);
+      EXPECT_GT(et.eigenvalues().minCoeff(),
+                -64 * std::numeric_limits<double>::epsilon() * scale * static_cast<double>(size));
+    }
+  }
 }
 
 // Redundant constraints are reported by name at finalize().
