@@ -6,7 +6,8 @@
 //
 // Usage: ancf-study-ida-capture [--scene studies/scenes/capture.toml] [--t-end T] [--window W]
 //                               [--rtol R] [--max-order K] [--axial-damping C]
-//                               [--slope-position-scale] [--max-newton N] [--friction MU]
+//                               [--slope-position-scale] [--tension-only-tangent]
+//                               [--max-newton N] [--friction MU]
 //                               [--regularization-speed V] [--onset-depth D] [--out DIR]
 #include <fmt/format.h>
 
@@ -33,6 +34,7 @@ struct Options {
   double friction = -1.0, regularization_speed = 0.0, onset_depth = 0.0;  // contact law overrides
   int max_order = 0;
   bool slope_position_scale = false;
+  bool tension_only_tangent = false;
   int max_newton = 0;
 };
 
@@ -66,6 +68,8 @@ Options parse(int argc, char** argv) {
       o.out = value();
     else if (a == "--slope-position-scale")
       o.slope_position_scale = true;
+    else if (a == "--tension-only-tangent")
+      o.tension_only_tangent = true;
     else if (a == "--max-newton")
       o.max_newton = std::stoi(value());
     else
@@ -120,6 +124,7 @@ int main(int argc, char** argv) {
   if (s.ida_slope_position_scale || o.slope_position_scale)
     scales.slope = SlopeScale::position_equivalent;
   GglProblem problem(scene.model, scales, ContactPatternOptions{.policy = s.contact_pattern});
+  problem.set_cable_tangent(o.tension_only_tangent ? CableTangent::tension_only : s.cable_tangent);
   IdaOptions io;
   io.rtol = o.rtol > 0.0 ? o.rtol : s.rtol;
   io.max_order = o.max_order > 0 ? o.max_order : s.max_order;

@@ -4,6 +4,7 @@
 // element is the paper's (S5), checked against an independent quadrature written here.
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <cmath>
 #include <cstdio>
@@ -521,6 +522,39 @@ TEST(CableQuadrature, LinearStiffnessIsExactWithThreeAxialAndTwoBendingPoints) {
         else
           EXPECT_GT(err, 1e-3) << measure_name(m) << " rule " << na << "/" << nb;
       }
+}
+
+// CableTangent::tension_only drops the geometric stiffness N ∂²ε/∂a² where N < 0 and nothing
+// else: forces are unchanged, a stretched element's matrix is the exact one, and a uniformly
+// compressed EI = 0 element, whose exact tangent has the negative transverse eigenvalues of its
+// compressive geometric stiffness, gets a positive semidefinite matrix (its axial part only).
+TEST(CableTangent, TensionOnlyDropsOnlyTheCompressiveGeometricStiffness) {
+  const double l = 0.25, ea = 3e5;
+  const CableGeometry g = straight_cable(Vec3::Zero(), l * Vec3::UnitX(), 1);
+  const Vec12 e0 = g.element_coordinates(0);
+  for (const StrainMeasure m : {StrainMeasure::green_lagrange, StrainMeasure::elastic_line}) {
+    const CableSection sec{.strain = m, .axial_stiffness = ea};
+    const auto ref = CableElementReference::from_reference(e0, l, m, sec.quadrature);
+    for (const double stretch : {1.01, 0.99}) {
+      const Vec12 e = stretch * e0;  // uniform axial strain of sign stretch − 1
+      CableElementResult exact, tension_only;
+      evaluate_cable_element(sec, ref, e, Vec12::Zero(), {.stiffness = true}, exact);
+      evaluate_cable_element(sec, ref, e, Vec12::Zero(),
+                             {.stiffness = true, .tangent = CableTangent::tension_only},
+                             tension_only);
+      EXPECT_EQ(exact.force, tension_only.force) << measure_name(m);
+      EXPECT_EQ(exact.energy, tension_only.energy) << measure_name(m);
+      const Eigen::SelfAdjointEigenSolver<Mat12> ek(exact.stiffness), et(tension_only.stiffness);
+      const double scale = exact.stiffness.cwiseAbs().maxCoeff();
+      if (stretch > 1.0) {
+        EXPECT_EQ(exact.stiffness, tension_only.stiffness) << measure_name(m);
+      } else {
+        EXPECT_LT(ek.eigenvalues().minCoeff(), -1e-3 * scale) << measure_name(m);
+        EXPECT_GT(et.eigenvalues().minCoeff(), -64 * kEps * scale) << measure_name(m);
+        EXPECT_GT((exact.stiffness - tension_only.stiffness).cwiseAbs().maxCoeff(), 1e-3 * scale);
+      }
+    }
+  }
 }
 
 TEST(CableQuadrature, RulesOutsideOneToFiveAreRefused) {

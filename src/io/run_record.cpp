@@ -19,6 +19,8 @@ JsonObject run_json(const Scene& scene, const RunRecord& record, const RunOutput
   JsonObject opts, counts, results, meta, times;
   opts.set("integrator", ida ? "ida" : "genalpha").set("rtol", s.rtol).set("t_end", s.t_end);
   opts.set("contact_pattern", s.contact_pattern == ContactPatternPolicy::all ? "all" : "near");
+  opts.set("cable_tangent",
+           s.cable_tangent == CableTangent::tension_only ? "tension_only" : "exact");
   if (ida)
     opts.set("max_step", s.max_step).set("max_order", static_cast<long>(s.max_order));
   else

@@ -15,6 +15,9 @@ IntegratorSettings read_integrator(TableReader& root) {
   s.contact_pattern = t.choice("contact_pattern", {"near", "all"}, "near") == "all"
                           ? ContactPatternPolicy::all
                           : ContactPatternPolicy::near;
+  s.cable_tangent = t.choice("cable_tangent", {"exact", "tension_only"}, "exact") == "tension_only"
+                        ? CableTangent::tension_only
+                        : CableTangent::exact;
   if (auto ida = t.optional_table("ida")) {
     s.ida_atol_position = ida->number_or("atol_position", s.ida_atol_position, Range::positive);
     s.ida_atol_velocity = ida->number_or("atol_velocity", s.ida_atol_velocity, Range::positive);
@@ -47,6 +50,13 @@ IntegratorSettings read_integrator(TableReader& root) {
     c.h_min = ga->number_or("h_min", c.h_min, Range::positive);
     c.h_max = ga->number_or("h_max", c.h_max, Range::non_negative);
     if (c.h_max > 0.0 && c.h_max < c.h_min) ga->fail("h_max", "expected h_max >= h_min (0: none)");
+    c.easy_rate = ga->number_or("ceiling_rate", c.easy_rate, Range::positive);
+    if (c.easy_rate >= 1.0) ga->fail("ceiling_rate", "expected a contraction rate in (0, 1)");
+    c.ceiling_growth = ga->number_or("ceiling_growth", c.ceiling_growth, Range::positive);
+    if (c.ceiling_growth < 1.0) ga->fail("ceiling_growth", "expected a factor >= 1");
+    s.ga_max_reuse_rate = ga->number_or("max_reuse_rate", s.ga_max_reuse_rate, Range::positive);
+    if (s.ga_max_reuse_rate >= 1.0)
+      ga->fail("max_reuse_rate", "expected a contraction rate in (0, 1)");
     const std::string change = ga->choice(
         "step_change", {"automatic", "restart", "rescale", "rescale_with_velocity"}, "automatic");
     s.ga_step_change = change == "restart"   ? GeneralizedAlphaStepChange::restart

@@ -31,7 +31,8 @@ class IdaBackend final : public Simulation::Backend {
  public:
   IdaBackend(const Model& model, const IntegratorSettings& s, const std::vector<double>& times)
       : problem_(model, scales(s), ContactPatternOptions{.policy = s.contact_pattern}),
-        ida_(problem_, options(s, times)),
+        // The cable tangent is chosen before IDA computes consistent initial values with it.
+        ida_((problem_.set_cable_tangent(s.cable_tangent), problem_), options(s, times)),
         state_(SystemState::initial(model)) {
     problem_.unpack(0.0, ida_.y(), ida_.yp(), state_);  // consistent initial values
   }
@@ -129,7 +130,7 @@ class GeneralizedAlphaBackend final : public Simulation::Backend {
  public:
   GeneralizedAlphaBackend(const Model& model, const IntegratorSettings& s)
       : problem_(model, ContactPatternOptions{.policy = s.contact_pattern}),
-        ga_(problem_, options(s)),
+        ga_((problem_.set_cable_tangent(s.cable_tangent), problem_), options(s)),
         state_(SystemState::initial(model)) {
     ga_.initialize(0.0);
     snapshot();
@@ -227,6 +228,7 @@ class GeneralizedAlphaBackend final : public Simulation::Backend {
     o.refresh_on_active_set_change = s.ga_refresh_on_contact_change;
     o.max_damping_halvings = s.ga_max_damping_halvings;
     o.filter_error_estimate = s.ga_filter_error_estimate;
+    o.max_reuse_rate = s.ga_max_reuse_rate;
     return o;
   }
   void snapshot() {

@@ -133,7 +133,12 @@ inline AxialPoint axial_point(const CableSection& sec, const Vec3& a, const Vec3
   energy += 0.5 * w * n_axial * (s.eps + sec.prestrain);
   AxialPoint p;
   p.ga = (w * n_axial) * s.eps_a;
-  if (req.stiffness) p.haa = w * (ea * s.eps_a * s.eps_a.transpose() + n_axial * s.eps_aa);
+  if (req.stiffness) {
+    // CableTangent::tension_only: no geometric stiffness from compression (N < 0).
+    const bool drop = req.tangent == CableTangent::tension_only && n_axial < 0.0;
+    p.haa = (w * ea) * s.eps_a * s.eps_a.transpose();
+    if (!drop) p.haa += (w * n_axial) * s.eps_aa;
+  }
   if constexpr (kDamping) {
     if (ca > 0.0) {
       const double eps_dot = s.eps_a.dot(a_dot);

@@ -313,6 +313,7 @@ void GeneralizedAlphaStepper::accept(double t1, double h, bool on_base, bool las
   acc_.swap(acc1_);
   lambda_previous_.swap(lambda_);
   lambda_.swap(lambda1_);
+  problem_.commit_step(t1, as_span(q_), as_span(v_));
   have_previous_ = true;
   previous_h_ = h;
   // t = t_base + n h (one rounding) rather than t += h (n roundings): far from t = 0 the

@@ -432,7 +432,28 @@ IdaStop IdaIntegrator::solve(double t_out, int task) {
   Impl& s = *impl_;
   realtype t_reached = t_;
   const auto start = std::chrono::steady_clock::now();
-  const int flag = IDASolve(s.mem.get(), t_out, &t_reached, s.y.get(), s.yp.get(), task);
+  int flag = 0;
+  if (!s.problem.keeps_history()) {
+    flag = IDASolve(s.mem.get(), t_out, &t_reached, s.y.get(), s.yp.get(), task);
+  } else if (task == IDA_ONE_STEP) {
+    flag = IDASolve(s.mem.get(), t_out, &t_reached, s.y.get(), s.yp.get(), IDA_ONE_STEP);
+    if (flag >= 0 && !s.fatal) s.problem.commit_step(t_reached, view(s.y.get()));
+  } else {
+    // One internal step at a time, so that the problem commits each accepted step's state
+    // (DaeProblem::commit_step); the output at t_out is IDA's interpolant, as in IDA_NORMAL.
+    for (;;) {
+      flag = IDASolve(s.mem.get(), t_out, &t_reached, s.y.get(), s.yp.get(), IDA_ONE_STEP);
+      if (flag < 0 || s.fatal) break;
+      s.problem.commit_step(t_reached, view(s.y.get()));
+      if (flag == IDA_ROOT_RETURN || flag == IDA_TSTOP_RETURN) break;
+      if (t_reached >= t_out) {
+        check(IDAGetDky(s.mem.get(), t_out, 0, s.y.get()), "IDAGetDky");
+        check(IDAGetDky(s.mem.get(), t_out, 1, s.yp.get()), "IDAGetDky");
+        t_reached = t_out;
+        break;
+      }
+    }
+  }
   s.wall_time += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   t_ = t_reached;
   if (s.fatal) std::rethrow_exception(std::exchange(s.fatal, nullptr));

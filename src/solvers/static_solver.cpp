@@ -144,6 +144,7 @@ StaticSolverStatistics StaticSolver::solve(VecX& y) {
     }
     s = s_next;
     y_converged = y;
+    problem_.commit(as_span(y));
     ++stats.load_steps;
   }
   stats.newton_iterations = iterations_;

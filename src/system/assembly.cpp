@@ -24,6 +24,7 @@ template <class Visitor>
 void for_each_element(const Model& model, const VecX& q, const VecX& v, Visitor&& visit) {
   for (Index ci = 0; ci < static_cast<Index>(model.cables().size()); ++ci) {
     const CableData& c = model.cables()[ci];
+    if (c.rod) continue;  // rods: rod_assembly.hpp
     const bool damping = c.section.has_damping();
     for (Index j = 0; j < static_cast<Index>(c.elements.size()); ++j) {
       const Index base = c.first_coordinate + 6 * j;
@@ -67,6 +68,14 @@ struct Scattered {
   double& position(Index s) const { return values[map.position[s]]; }
   double& velocity(Index s) const { return values[map.velocity[s]]; }
 };
+
+}  // namespace
+}  // namespace ancf
+
+#include "rod_assembly.hpp"
+
+namespace ancf {
+namespace {
 
 // velocity part += w (m4 ⊗ I₃): only the diagonal of each 3×3 block is non-zero (w = w_a for
 // the inertia, w_v α for mass-proportional damping).
@@ -157,7 +166,8 @@ class MatrixContactSink final : public detail::ContactSink {
 template <class Target>
 void add_iteration_matrix_to(const Model& model, const SystemState& state,
                              const IterationWeights& w, Workspace& ws, const Target& t) {
-  const CableEvalRequest request{.stiffness = w.w_q != 0.0, .damping_matrix = w.w_v != 0.0};
+  const CableEvalRequest request{
+      .stiffness = w.w_q != 0.0, .damping_matrix = w.w_v != 0.0, .tangent = ws.cable_tangent};
   const auto frames = ws.frames_at(model, state.t);
   const auto q = as_span(state.q), v = as_span(state.v);
 
@@ -190,6 +200,7 @@ void add_iteration_matrix_to(const Model& model, const SystemState& state,
         if (w.w_v != 0.0 && c.section.mass_damping > 0.0)  // ∂(α M v)/∂v = α M
           add_mass_matrix(c.mass[j], slots, w.w_v * c.section.mass_damping, t);
       });
+  detail::add_rod_matrix(model, state, w, ws, t);
   ws.element_seconds += seconds_since(element_start);
   if (w.w_a != 0.0)
     for (Index b = 0; b < static_cast<Index>(model.bodies().size()); ++b)
@@ -258,6 +269,7 @@ SystemState SystemState::initial(const Model& model) {
 
 Workspace::Workspace(const Model& model)
     : frames(model.frames().size()),
+      rods(RodHistory::initial(model)),
       element_boxes(model.cables().size()),
       cable_boxes(model.cables().size()),
       element_boxes_current(model.cables().size(), 0) {
@@ -302,6 +314,7 @@ void assemble_residual(const Model& model, const SystemState& state, double load
         if (c.section.mass_damping > 0.0)
           add_mass_times(c.section.mass_damping * c.mass[j], base, state.v, rq);
       });
+  detail::add_rod_residual(model, state, load_factor, inertia, ws, rq);
   ws.element_seconds += seconds_since(element_start);
   if (inertia)
     for (const BodyData& b : model.bodies())
@@ -401,7 +414,7 @@ void assemble_acceleration_rhs(const Model& model, const SystemState& state, Wor
 Energies energies(const Model& model, const SystemState& state, Workspace& ws) {
   Energies e;
   e.kinetic = kinetic_energy(model, state.v);
-  e.strain = strain_energy(model, state.q);
+  e.strain = strain_energy(model, state.q, ws.rods);
   const auto frames = ws.frames_at(model, state.t);
   for (const auto& f : model.spring_dampers())
     e.spring += potential_energy(f.element, as_span(state.q), frames);
@@ -455,7 +468,11 @@ void assemble_iteration_matrix(const Model& model, const SystemState& state,
 }
 
 double strain_energy(const Model& model, const VecX& q) {
-  double u = 0.0;
+  return strain_energy(model, q, RodHistory::initial(model));
+}
+
+double strain_energy(const Model& model, const VecX& q, const RodHistory& rods) {
+  double u = detail::rod_strain_energy(model, q, rods);
   CableElementResult res;
   for_each_element(model, q, q,
                    [&](Index, Index j, const CableData& c, Index, const Vec12& e, const Vec12&) {
@@ -478,6 +495,12 @@ double kinetic_energy(const Model& model, const VecX& v) {
     for (Index j = 0; j < static_cast<Index>(c.elements.size()); ++j)
       add(c.mass[j], c.first_coordinate + 6 * j);
   for (const BodyData& b : model.bodies()) add(b.mass, b.first_coordinate);
+  for (const CableData& c : model.cables())  // twist inertia ½ α̇ᵀ M_α α̇
+    if (c.rod)
+      for (Index j = 0; j + 1 < c.node_count; ++j) {
+        const Eigen::Vector2d w = v.segment<2>(c.rod->twist_first + j);
+        t += 0.5 * w.dot(c.rod->twist_mass[j] * w);
+      }
   return t;
 }
 

@@ -16,7 +16,8 @@ Vec12 CableGeometry::element_coordinates(Index j) const {
 
 namespace {
 void require_elements(Index n, const char* what) {
-  if (n < 1) throw ModelError(std::string(what) + ": element count must be >= 1, got " + std::to_string(n));
+  if (n < 1)
+    throw ModelError(std::string(what) + ": element count must be >= 1, got " + std::to_string(n));
 }
 }  // namespace
 
@@ -73,6 +74,39 @@ CableGeometry helix_cable(const Vec3& base, const Vec3& axis, const Vec3& u, dou
   }
   g.element_lengths.assign(elements, length / elements);
   return g;
+}
+
+namespace {
+Mat3 frame_from_normal(const Vec3& t, const Vec3& normal, Index node) {
+  const Vec3 g = t.normalized();
+  const Vec3 d2 = normal - normal.dot(g) * g;
+  if (!(d2.norm() > 1e-8 * normal.norm()))
+    throw ModelError("rod reference frame: the normal is parallel to the tangent at node " +
+                     std::to_string(node));
+  Mat3 f;
+  f.col(0) = g;
+  f.col(1) = d2.normalized();
+  f.col(2) = g.cross(f.col(1));
+  return f;
+}
+}  // namespace
+
+std::vector<Mat3> rod_frames_with_normal(const CableGeometry& g, const Vec3& normal) {
+  std::vector<Mat3> out;
+  for (Index k = 0; k < g.node_count(); ++k)
+    out.push_back(frame_from_normal(g.nodes[k].tail<3>(), normal, k));
+  return out;
+}
+
+std::vector<Mat3> rod_frames_toward_axis(const CableGeometry& g, const Vec3& point,
+                                         const Vec3& axis) {
+  const Vec3 a = axis.normalized();
+  std::vector<Mat3> out;
+  for (Index k = 0; k < g.node_count(); ++k) {
+    const Vec3 r = g.nodes[k].head<3>() - point;
+    out.push_back(frame_from_normal(g.nodes[k].tail<3>(), -(r - r.dot(a) * a), k));
+  }
+  return out;
 }
 
 }  // namespace ancf

@@ -25,6 +25,8 @@ std::string Model::describe_row(Index row) const {
       const Index local = row - c.first_coordinate;
       if (local >= 0 && local < 6 * c.node_count)
         return "cable '" + c.name + "' node " + std::to_string(local / 6) + " " + kNode[local % 6];
+      if (c.rod && row >= c.rod->twist_first && row < c.rod->twist_first + c.node_count)
+        return "rod '" + c.name + "' node " + std::to_string(row - c.rod->twist_first) + " twist";
     }
     for (const BodyData& b : bodies_) {
       const Index local = row - b.first_coordinate;

@@ -79,9 +79,13 @@ Index ModelBuilder::add_cable(std::string name, const CableGeometry& reference,
     if (c.name == name) throw ModelError("cable name '" + name + "' is used twice");
   validate_section(name, section);
   validate_geometry(name, reference);
-  cables_.push_back(
-      {std::move(name), section, reference, reference,
-       std::vector<NodeCoordinates>(reference.nodes.size(), NodeCoordinates::Zero())});
+  cables_.push_back({std::move(name),
+                     section,
+                     reference,
+                     reference,
+                     std::vector<NodeCoordinates>(reference.nodes.size(), NodeCoordinates::Zero()),
+                     std::nullopt,
+                     {}});
   return static_cast<Index>(cables_.size()) - 1;
 }
 
@@ -437,6 +441,9 @@ Model ModelBuilder::finalize() {
     CableData c;
     c.name = pc.name;
     c.section = pc.section;
+    const Index twist_first = pc.rod ? next : -1;
+    if (pc.rod) next += pc.reference.node_count();  // twist block in front of the centreline
+    o.twist_first.push_back(twist_first);
     c.first_coordinate = next;
     c.node_count = pc.reference.node_count();
     for (Index j = 0; j < pc.reference.element_count(); ++j) {
@@ -445,6 +452,7 @@ Model ModelBuilder::finalize() {
           pc.reference.element_coordinates(j), l, pc.section.strain, pc.section.quadrature));
       c.mass.push_back(hermite::mass_matrix(pc.section.mass_per_length, l));
     }
+    if (pc.rod) c.rod = make_rod_data(pc, c, twist_first);
     o.cable_first.push_back(next);
     next += 6 * c.node_count;
     m.cables_.push_back(std::move(c));
@@ -499,6 +507,12 @@ Model ModelBuilder::finalize() {
     push_rows(b.name + ".orthonormality", body_orthonormality(b.first_coordinate));
   for (const PendingConstraint& pc : constraints_) push_rows(pc.name, pc.rows(o));
   for (const PendingForce& f : forces_) f.add(o, m);
+  for (const auto& [node, moment] : node_moments_) {
+    RodMomentData d{node.cable, node.node, moment, {}, {}};
+    for (int k = 0; k < 3; ++k) d.coordinates[k] = o.node(node) + 3 + k;
+    d.coordinates[3] = o.twist(node);
+    m.rod_moments_.push_back(d);
+  }
   finalize_contacts(o, m);
 
   check_redundancy(m);

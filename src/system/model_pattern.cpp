@@ -14,6 +14,19 @@ void visit_cable_block(Index base, Visit&& visit) {
     for (Index r = 0; r < 12; ++r) visit(base + r, base + col);
 }
 
+// The 14×14 block of rod element j (centreline block and the two twist angles), column-major.
+template <class Visit>
+void visit_rod_block(const CableData& c, Index j, Visit&& visit) {
+  for (int col = 0; col < 14; ++col)
+    for (int r = 0; r < 14; ++r) visit(c.rod_coordinate(j, r), c.rod_coordinate(j, col));
+}
+
+template <class Visit>
+void visit_moment_block(const RodMomentData& d, Visit&& visit) {
+  for (int col = 0; col < 4; ++col)
+    for (int r = 0; r < 4; ++r) visit(d.coordinates[r], d.coordinates[col]);
+}
+
 template <class VisitPhiQ, class VisitGeometric>
 void visit_row(Index row, const DotConstraintRow& c, VisitPhiQ&& visit_phi_q,
                VisitGeometric&& visit_geometric) {
@@ -59,7 +72,11 @@ void ModelBuilder::build_pattern_and_slots(Model& m) {
   auto add = [&](Index r, Index c) { p.add(r, c); };
   for (const CableData& c : m.cables_)
     for (Index j = 0; j < static_cast<Index>(c.elements.size()); ++j)
-      visit_cable_block(c.first_coordinate + 6 * j, add);
+      if (c.rod)
+        visit_rod_block(c, j, add);
+      else
+        visit_cable_block(c.first_coordinate + 6 * j, add);
+  for (const RodMomentData& d : m.rod_moments_) visit_moment_block(d, add);
   for (const BodyData& b : m.bodies_) visit_cable_block(b.first_coordinate, add);  // 12×12 as well
   for (Index r = 0; r < m.multiplier_count(); ++r)
     visit_row(m.n_coordinates_ + r, m.rows_[r], add, add);
@@ -71,7 +88,7 @@ void ModelBuilder::build_pattern_and_slots(Model& m) {
   // are near (DESIGN §5).
   p.freeze();
 
-  for (const CableData& c : m.cables_) {
+  for (CableData& c : m.cables_) {
     m.element_slot_offset_.push_back(static_cast<Index>(m.element_slots_.size()));
     for (Index j = 0; j < static_cast<Index>(c.elements.size()); ++j) {
       std::array<Index, 144> s{};
@@ -80,6 +97,16 @@ void ModelBuilder::build_pattern_and_slots(Model& m) {
                         [&](Index r, Index col) { s[k++] = p.slot(r, col); });
       m.element_slots_.push_back(s);
     }
+    if (!c.rod) continue;
+    c.rod->slots.resize(c.elements.size());
+    for (Index j = 0; j < static_cast<Index>(c.elements.size()); ++j) {
+      int k = 0;
+      visit_rod_block(c, j, [&](Index r, Index col) { c.rod->slots[j][k++] = p.slot(r, col); });
+    }
+  }
+  for (RodMomentData& d : m.rod_moments_) {
+    int k = 0;
+    visit_moment_block(d, [&](Index r, Index col) { d.slots[k++] = p.slot(r, col); });
   }
   for (const BodyData& b : m.bodies_) {
     std::array<Index, 144> s{};

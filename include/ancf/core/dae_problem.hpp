@@ -69,6 +69,13 @@ class DaeProblem {
     consistent_values(t0, y, yp);
   }
 
+  /// True if the problem keeps history that must be committed on accepted steps: the integrator
+  /// then returns after every internal step (not only at output times) to call commit_step().
+  [[nodiscard]] virtual bool keeps_history() const { return false; }
+  /// Called with the state of each accepted internal step (and of event points); rejected steps
+  /// and Newton iterates are never passed (BDF history stays consistent). Default: nothing.
+  virtual void commit_step(double /*t*/, std::span<const double> /*y*/) {}
+
   /// Name of unknown i and of residual row i (rows and unknowns pair up one to one), e.g.
   /// "v of cable 'rope' node 3 r.z" — used to report where an integration failed.
   [[nodiscard]] virtual std::string describe_row(Index i) const = 0;

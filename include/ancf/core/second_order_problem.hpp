@@ -86,6 +86,11 @@ class SecondOrderProblem {
   /// the contact stiffness of the current iterate. Default: 0 (no contacts).
   [[nodiscard]] virtual std::uint64_t active_set_signature() const { return 0; }
 
+  /// Called with each accepted step's state (t, q, v), before the next step is attempted: an
+  /// implementation with history commits it here. Newton iterates and rejected steps are never
+  /// passed, so nothing needs rolling back. Default: nothing.
+  virtual void commit_step(double /*t*/, std::span<const double> /*q*/,
+                           std::span<const double> /*v*/) {}
   /// Human-readable name of unknown / residual row i (i < n: a coordinate, else a constraint row).
   [[nodiscard]] virtual std::string describe_row(Index i) const = 0;
 

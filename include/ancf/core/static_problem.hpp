@@ -29,6 +29,10 @@ class StaticProblem {
   /// ∂R/∂y values (one per pattern non-zero) into `values`.
   virtual void jacobian(std::span<const double> y, double load_factor,
                         std::span<double> values) = 0;
+  /// Called with each accepted (converged) state of a load step, before the next load step: an
+  /// implementation with history (e.g. rod reference triads) commits it here. Trial iterates are
+  /// never passed, so a rejected increment needs no rollback. Default: nothing.
+  virtual void commit(std::span<const double> /*y*/) {}
   /// Human-readable name of unknown / residual row i ("cable 'rope' node 3 r_x.y", ...).
   [[nodiscard]] virtual std::string describe_row(Index i) const = 0;
 };

@@ -47,9 +47,12 @@ struct IntegratorSettings {
   bool ga_refresh_on_contact_change = false;
   int ga_max_damping_halvings = 0;       ///< damped Newton (GeneralizedAlphaOptions), 0: off
   bool ga_filter_error_estimate = true;  ///< filtered local error estimate
+  double ga_max_reuse_rate = 0.1;  ///< modified Newton's reuse threshold (GeneralizedAlphaOptions)
   /// Contact coupling blocks in the iteration matrix: those of the pairs that are near (default)
   /// or every candidate's (the first design, kept to measure against).
   ContactPatternPolicy contact_pattern = ContactPatternPolicy::near;
+  /// Tangent of the cable elements in both integrators' iteration matrices (CableTangent).
+  CableTangent cable_tangent = CableTangent::exact;
 };
 
 /// One probe of the output time series (probes.csv columns, docs/scenes.md).

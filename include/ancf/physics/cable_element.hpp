@@ -103,10 +103,23 @@ struct CableElementReference {
                                               const CableQuadrature& quadrature = {});
 };
 
+/// Which matrix `stiffness` holds.
+/// * exact: ∂f/∂e.
+/// * tension_only: ∂f/∂e without the geometric term N ∂²ε/∂a² at the Gauss points where the axial
+///   force N is compressive (N < 0), i.e. the tangent of a tension-field (string) model that
+///   carries no compression stiffness. Force and energy are unchanged, so a Newton iteration with
+///   it converges to the same solution as a modified Newton method. Why: a compressed EI = 0
+///   element has a negative geometric stiffness (N < 0 along the slope directions of the
+///   element) that the exact tangent carries into the iteration matrix of a slack rope, where it
+///   makes the matrix indefinite near the slack/taut switch and Newton's full step overshoot
+///   (docs/time_step_control.md, "Newton through contact").
+enum class CableTangent { exact, tension_only };
+
 /// What to evaluate. Force and energy are always computed.
 struct CableEvalRequest {
   bool stiffness = false;  ///< ∂f/∂e (includes ∂(damping force)/∂e when damping is present)
-  bool damping_matrix = false;  ///< ∂f/∂ė
+  bool damping_matrix = false;                 ///< ∂f/∂ė
+  CableTangent tangent = CableTangent::exact;  ///< what `stiffness` holds (CableTangent)
 };
 
 /// Element results. Sign convention: f is the internal force F of M q'' + F = Q, i.e. ∂U/∂e plus

@@ -8,6 +8,7 @@
 
 #include "ancf/physics/cable_contact.hpp"
 #include "ancf/system/model.hpp"
+#include "ancf/system/rod_history.hpp"
 
 namespace ancf {
 
@@ -31,6 +32,10 @@ struct Workspace {
   bool frames_valid = false;
   CableElementResult element;
   ForceResult force;
+  /// Committed rod history (rod_history.hpp): the state the rod kernels are evaluated under.
+  /// Changed only by commit_rod_history() on accepted states.
+  RodHistory rods;
+  RodElementResult rod;
   // Contact scratch, sized here so that a time step allocates nothing: element and cable boxes
   // of the cables in contact pairs (empty for the others), candidate elements, one sample result.
   std::vector<std::vector<Aabb>> element_boxes;
@@ -52,6 +57,8 @@ struct Workspace {
   /// Wall time [s] in the cable element kernels (forces and matrices) and in the contact
   /// detection and kernels, cumulative: the time shares of a run.
   double element_seconds = 0.0, contact_seconds = 0.0;
+  /// Tangent of the cable kernels in iteration matrices (CableTangent; residuals are exact).
+  CableTangent cable_tangent = CableTangent::exact;
   explicit Workspace(const Model& model);
   /// Frame kinematics at t (recomputed only when t changes).
   std::span<const FrameKinematics> frames_at(const Model& model, double t);
@@ -104,8 +111,7 @@ struct MatrixScatter {
 /// the same code path, so both matrices agree term by term. Each cable element kernel runs once.
 void add_iteration_matrix(const Model& model, const SystemState& state,
                           const IterationWeights& weights, const MatrixScatter& scatter,
-                          const ContactCoupling* coupling, Workspace& ws,
-                          std::span<double> values);
+                          const ContactCoupling* coupling, Workspace& ws, std::span<double> values);
 
 /// Φ_q v + Φ_t (size m): the velocity-level constraint.
 void assemble_velocity_constraint(const Model& model, const SystemState& state, Workspace& ws,
@@ -146,6 +152,8 @@ struct ConstraintViolation {
 void assemble_iteration_matrix(const Model& model, const SystemState& state,
                                const IterationWeights& weights, std::span<double> values);
 [[nodiscard]] double strain_energy(const Model& model, const VecX& q);
+/// The same with the rods evaluated under `rods` (the one above uses the reference history).
+[[nodiscard]] double strain_energy(const Model& model, const VecX& q, const RodHistory& rods);
 [[nodiscard]] double kinetic_energy(const Model& model, const VecX& v);
 
 }  // namespace ancf

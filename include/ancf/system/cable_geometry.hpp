@@ -31,9 +31,20 @@ struct CableGeometry {
                                       double radius, double angle, Index elements);
 
 /// Helix about the axis through `base` along unit `axis`, radius R, starting at polar angle phi0
-/// (measured from unit `u` ⊥ axis towards axis × u), turning by `twist` [rad] while rising `rise` [m].
+/// (measured from unit `u` ⊥ axis towards axis × u), turning by `twist` [rad] while rising `rise`
+/// [m].
 [[nodiscard]] CableGeometry helix_cable(const Vec3& base, const Vec3& axis, const Vec3& u,
                                         double radius, double phi0, double twist, double rise,
                                         Index elements);
+
+/// Reference material triads of a rod (kirchhoff_rod_element.hpp), one per node:
+/// [t̂, d₂, d₃] with d₂ the unit part of `normal` orthogonal to the node's tangent t̂ and
+/// d₃ = t̂ × d₂. For straight and polyline references. Throws ModelError where `normal` is
+/// (nearly) parallel to a tangent.
+[[nodiscard]] std::vector<Mat3> rod_frames_with_normal(const CableGeometry& g, const Vec3& normal);
+/// The same with d₂ pointing from each node towards the axis through `point` along `axis`: the
+/// principal normal of an arc (axis through its centre, normal to its plane) or of a helix.
+[[nodiscard]] std::vector<Mat3> rod_frames_toward_axis(const CableGeometry& g, const Vec3& point,
+                                                       const Vec3& axis);
 
 }  // namespace ancf

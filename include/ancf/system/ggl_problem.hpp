@@ -62,6 +62,11 @@ class GglProblem final : public DaeProblem {
   [[nodiscard]] const SparsityPattern& jacobian_pattern() const override { return pattern_; }
   /// ContactPattern::update at (t, q, v) of y; rebuilds the GGL pattern when it changed.
   bool update_jacobian_pattern(double t, std::span<const double> y, double horizon) override;
+  /// Rods keep history: IDA returns after every step so that it is committed (rod_history.hpp).
+  [[nodiscard]] bool keeps_history() const override { return model_.has_rods(); }
+  void commit_step(double, std::span<const double> y) override {
+    commit_rod_history(model_, y, workspace_.rods, kRodCommitTurn);
+  }
   void residual(double t, std::span<const double> y, std::span<const double> yp,
                 std::span<double> r) override;
   void jacobian(double t, std::span<const double> y, std::span<const double> yp, double c_j,
@@ -90,6 +95,9 @@ class GglProblem final : public DaeProblem {
   [[nodiscard]] const ContactPattern& contact_pattern() const { return contact_; }
   /// The scratch workspace, for its counters (contact samples, kernel times).
   [[nodiscard]] const Workspace& workspace() const { return workspace_; }
+  /// Tangent of the cable elements in the iteration matrix (CableTangent; default exact). The
+  /// residual does not depend on it.
+  void set_cable_tangent(CableTangent tangent) { workspace_.cable_tangent = tangent; }
   /// First index of each part of y.
   [[nodiscard]] Index velocity_offset() const { return n_; }
   [[nodiscard]] Index lambda_offset() const { return 2 * n_; }

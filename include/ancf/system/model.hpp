@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,14 +13,29 @@
 #include "ancf/physics/dot_constraint.hpp"
 #include "ancf/physics/driven_frame.hpp"
 #include "ancf/physics/force_elements.hpp"
+#include "ancf/physics/kirchhoff_rod_element.hpp"
 #include "ancf/physics/rigid_body.hpp"
 #include "ancf/system/cable_geometry.hpp"
 #include "ancf/system/contact_data.hpp"
 
 namespace ancf {
 
+/// The twist part of a cable of the Kirchhoff rod kind (kirchhoff_rod_element.hpp, docs/rod.md).
+/// Node k's twist angle α_k is coordinate twist_first + k; the twist block [twist_first, … + N)
+/// lies directly in front of the cable's centreline block.
+struct RodData {
+  RodSection section;
+  Index twist_first = 0;
+  std::vector<RodElementReference> elements;
+  std::vector<Eigen::Matrix2d> twist_mass;  ///< per element, on (α_j, α_j+1)
+  std::vector<Mat3> reference_frames;       ///< per node: material triad of the reference (α = 0)
+  std::vector<double> reference_omega;      ///< per element: ω of the reference
+  std::vector<std::array<Index, 196>> slots;  ///< per element, column-major over 14×14
+};
+
 /// One cable. Node k owns coordinates [first_coordinate + 6k, … + 6); element j owns the
-/// contiguous block [first_coordinate + 6j, … + 12).
+/// contiguous block [first_coordinate + 6j, … + 12). A rod (rod present) is evaluated by the rod
+/// kernel instead of the cable kernel; `elements` then serve only contact, loads and outputs.
 struct CableData {
   std::string name;
   CableSection section;
@@ -27,6 +43,22 @@ struct CableData {
   Index node_count = 0;
   std::vector<CableElementReference> elements;
   std::vector<Mat4> mass;  ///< scalar 4×4 consistent mass per element (⊗ I₃)
+  std::optional<RodData> rod;
+
+  /// Global index of local coordinate i of rod element j: 0…11 the centreline block, 12 and 13
+  /// the twist angles of its nodes. Precondition: rod present.
+  [[nodiscard]] Index rod_coordinate(Index j, int i) const {
+    return i < 12 ? first_coordinate + 6 * j + i : rod->twist_first + j + (i - 12);
+  }
+};
+
+/// A moment fixed in space [N m] at a rod node (scaled by the load factor), with the slots of its
+/// load stiffness on the node's (r_x, α) coordinates (4×4, column-major).
+struct RodMomentData {
+  Index cable = 0, node = 0;
+  Vec3 moment;
+  std::array<Index, 4> coordinates{};
+  std::array<Index, 16> slots{};
 };
 
 /// One rigid body: coordinates [first_coordinate, … + 12) = [r_O, a₁, a₂, a₃].
@@ -79,6 +111,14 @@ class Model {
   }
   [[nodiscard]] const std::vector<ForceElementData<RevoluteDrive>>& drives() const {
     return drives_;
+  }
+
+  [[nodiscard]] const std::vector<RodMomentData>& rod_moments() const { return rod_moments_; }
+  /// True if some cable is a rod: the model keeps history (RodHistory, committed per step).
+  [[nodiscard]] bool has_rods() const {
+    for (const CableData& c : cables_)
+      if (c.rod) return true;
+    return false;
   }
 
   [[nodiscard]] const std::vector<ContactShapeData>& shapes() const { return shapes_; }
@@ -141,6 +181,7 @@ class Model {
   std::vector<ForceElementData<PointForce>> point_forces_;
   std::vector<ForceElementData<BodyTorque>> torques_;
   std::vector<ForceElementData<RevoluteDrive>> drives_;
+  std::vector<RodMomentData> rod_moments_;
   std::vector<ContactShapeData> shapes_;
   std::vector<CableShapeContactData> cable_shape_contacts_;
   std::vector<CableCableContactData> cable_cable_contacts_;

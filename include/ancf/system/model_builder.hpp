@@ -8,6 +8,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -47,6 +48,13 @@ class ModelBuilder {
   /// Add a cable whose stress-free reference is `reference` (its nodal coordinates define J₀ and
   /// κ₀). The initial configuration is the reference unless set_initial_configuration() is called.
   Index add_cable(std::string name, const CableGeometry& reference, const CableSection& section);
+  /// Add a Kirchhoff rod (kirchhoff_rod_element.hpp, docs/rod.md): a cable whose elements carry
+  /// a material frame and twist. `section` supplies ρA, the radius (contact), mass-proportional
+  /// damping; its EA and EI are ignored (the rod's own are used). `frames` has one material triad
+  /// per reference node, first column the unit reference tangent (rod_reference_frames()).
+  /// The twist angles start at 0 with zero rate.
+  Index add_rod(std::string name, const CableGeometry& reference, CableSection section,
+                const RodSection& rod, const std::vector<Mat3>& frames);
   /// Start cable `cable` from other nodal coordinates (same node count) and velocities (optional).
   void set_initial_configuration(Index cable, const CableGeometry& current,
                                  const std::vector<NodeCoordinates>* velocities = nullptr);
@@ -64,6 +72,9 @@ class ModelBuilder {
   void set_gravity(const Vec3& g) { gravity_ = g; }
   /// Dead force [N] at a node.
   void add_node_force(NodeRef node, const Vec3& force);
+  /// Moment [N m] fixed in space on a rod node's material triad (scaled by the load factor); its
+  /// load stiffness enters the iteration matrix (rod_end_moment).
+  void add_node_moment(NodeRef node, const Vec3& moment);
   /// Force [N] at a point, constant or F(t).
   void add_point_force(std::string name, const AttachmentPoint& point, const Vec3& force,
                        std::function<Vec3(double)> time_function = {});
@@ -75,8 +86,8 @@ class ModelBuilder {
                          double stiffness, double damping, double rest_length = -1.0);
   /// Torque-limited PD drive on the revolute joint `joint` (added before with revolute() or
   /// revolute_to_ground()); θ = 0 at the initial configuration, positive about the joint axis.
-  void add_revolute_drive(std::string name, const std::string& joint, AngleLaw reference,
-                          double kp, double kd, double torque_max);
+  void add_revolute_drive(std::string name, const std::string& joint, AngleLaw reference, double kp,
+                          double kd, double torque_max);
 
   // --- contact (DESIGN §5; contact_law.hpp, contact_shapes.hpp, cable_contact.hpp) -------------
   /// Add a named shape fixed to ground (shape data in global coordinates), to a driven frame or
@@ -111,6 +122,12 @@ class ModelBuilder {
   void attach_node_to_frame(std::string name, NodeRef node, int frame);
   /// Node slope parallel to the frame-fixed direction of its initial slope (2 rows).
   void align_slope_to_frame(std::string name, NodeRef node, int frame);
+  /// Rod node twist angle fixed at its initial value (1 row). With the node's slope fixed in
+  /// direction (align_slope) the material triad is fixed: pin + align_slope + fix_twist = clamp.
+  void fix_twist(std::string name, NodeRef node);
+  /// Two rod nodes share their twist angle (1 row); with join_nodes(…, slopes = true) the two
+  /// material triads coincide, provided their reference triads do (checked at finalize).
+  void join_twist(std::string name, NodeRef a, NodeRef b);
   /// Two nodes share their position (3 rows) and, with `slopes`, their slope (3 more rows).
   void join_nodes(std::string name, NodeRef a, NodeRef b, bool slopes = false);
 
@@ -133,6 +150,8 @@ class ModelBuilder {
     CableGeometry reference;
     CableGeometry initial;
     std::vector<NodeCoordinates> velocities;
+    std::optional<RodSection> rod;
+    std::vector<Mat3> frames;  // rods: reference material triads per node
   };
   struct PendingBody {
     std::string name;
@@ -145,6 +164,8 @@ class ModelBuilder {
   // stored as functions of the final coordinate offsets.
   struct Offsets {
     std::vector<Index> cable_first, body_first;
+    std::vector<Index> twist_first;  // −1 for cables that are not rods
+    [[nodiscard]] Index twist(NodeRef n) const { return twist_first[n.cable] + n.node; }
     [[nodiscard]] Index node(NodeRef n) const { return cable_first[n.cable] + 6 * n.node; }
     [[nodiscard]] Index body(Index b) const { return body_first[b]; }
   };
@@ -156,7 +177,7 @@ class ModelBuilder {
     std::string name;
     Index base_body;  // −1: ground
     Index body;
-    Vec3 axis;        // global, at the initial configuration
+    Vec3 axis;  // global, at the initial configuration
   };
   struct PendingForce {
     std::string name;
@@ -172,6 +193,8 @@ class ModelBuilder {
   Vec3 point_position(const AttachmentPoint& p) const;
   void add_constraint(std::string name, std::function<ConstraintRows(const Offsets&)> rows);
   Index add_shape(ContactShapeData shape);
+  /// Rod data of cable `c` from its pending data (model_builder_rods.cpp).
+  static RodData make_rod_data(const PendingCable& pc, const CableData& c, Index twist_first);
   /// Contact data of the model (owner coordinates) at finalize() (contact_builder.cpp).
   void finalize_contacts(const Offsets& o, Model& m) const;
   /// ModelError naming each constraint whose rows are linearly dependent on earlier rows at the
@@ -187,6 +210,7 @@ class ModelBuilder {
   std::vector<RevoluteInfo> revolutes_;
   std::vector<PendingForce> forces_;
   std::vector<std::pair<NodeRef, Vec3>> node_forces_;
+  std::vector<std::pair<NodeRef, Vec3>> node_moments_;
   std::vector<ContactShapeData> shapes_;
   std::vector<CableShapeContactData> cable_shape_contacts_;
   std::vector<CableCableContactData> cable_cable_contacts_;

@@ -44,6 +44,10 @@ class MultibodyProblem final : public SecondOrderProblem {
   [[nodiscard]] double energy(double t, std::span<const double> q,
                               std::span<const double> v) override;
   [[nodiscard]] std::string describe_row(Index i) const override { return model_.describe_row(i); }
+  /// Commits the rod history at the accepted state (rod_history.hpp).
+  void commit_step(double, std::span<const double> q, std::span<const double>) override {
+    commit_rod_history(model_, q, workspace_.rods, kRodCommitTurn);
+  }
   /// Hash of the active contact samples of the last residual() (Workspace).
   [[nodiscard]] std::uint64_t active_set_signature() const override {
     return workspace_.active_contact_signature;
@@ -59,6 +63,9 @@ class MultibodyProblem final : public SecondOrderProblem {
   [[nodiscard]] const ContactPattern& contact_pattern() const { return contact_; }
   /// The scratch workspace, for its counters (contact samples, kernel times).
   [[nodiscard]] const Workspace& workspace() const { return workspace_; }
+  /// Tangent of the cable elements in the iteration matrix (CableTangent; default exact). The
+  /// residual does not depend on it.
+  void set_cable_tangent(CableTangent tangent) { workspace_.cable_tangent = tangent; }
   /// Wall time spent in residual() and in iteration_matrix() [s], cumulative.
   [[nodiscard]] double residual_seconds() const { return residual_seconds_; }
   [[nodiscard]] double matrix_seconds() const { return matrix_seconds_; }

@@ -22,6 +22,11 @@ class StaticModelProblem final : public StaticProblem {
   void residual(std::span<const double> y, double load_factor, std::span<double> r) override;
   void jacobian(std::span<const double> y, double load_factor, std::span<double> values) override;
   [[nodiscard]] std::string describe_row(Index i) const override { return model_.describe_row(i); }
+  /// Commits the rod history at the converged state (rod_history.hpp).
+  void commit(std::span<const double> y) override {
+    commit_rod_history(model_, y, workspace_.rods, kRodCommitTurn);
+  }
+  [[nodiscard]] const Workspace& workspace() const { return workspace_; }
 
   /// y from the model's initial configuration, λ = 0.
   [[nodiscard]] VecX initial_guess() const;

@@ -1,0 +1,326 @@
+#include "ancf/physics/kirchhoff_rod_element.hpp"
+
+#include <Eigen/LU>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include "ancf/core/error.hpp"
+#include "ancf/core/gauss_legendre.hpp"
+#include "ancf/physics/hermite_shape.hpp"
+#include "ancf/physics/jet.hpp"
+
+namespace ancf {
+namespace {
+
+// 1 + (source tangent)·(target tangent) below this: the smallest rotation is (nearly) undefined.
+constexpr double kSrDenominatorMin = 1e-8;
+
+// A 3-vector of a scalar type T (double or a jet); only the operations the strains need.
+template <class T>
+struct V3 {
+  T x, y, z;
+};
+template <class T>
+V3<T> operator+(const V3<T>& a, const V3<T>& b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+template <class T>
+V3<T> operator-(const V3<T>& a, const V3<T>& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+template <class T, class S>
+V3<T> scale(const S& s, const V3<T>& a) {
+  return {s * a.x, s * a.y, s * a.z};
+}
+template <class T>
+T dot(const V3<T>& a, const V3<T>& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+template <class T>
+V3<T> cross(const V3<T>& a, const V3<T>& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+template <class T>
+V3<T> constant(const Vec3& c) {
+  return {T(c.x()), T(c.y()), T(c.z())};
+}
+
+// Column k of SR(source → g) for unit g, source columns (s1, s_k):
+//   s_k − (s_k·g)/(1 + s1·g) (g + s1)        (Meier et al. 2014; 4C calculate_sr_triads).
+template <class T>
+V3<T> sr_column(const V3<T>& s1, const V3<T>& sk, const V3<T>& g, const T& inv_denominator) {
+  return sk - scale(dot(sk, g) * inv_denominator, g + s1);
+}
+
+template <class T>
+T checked_inverse_denominator(const T& denominator, const char* where) {
+  if (!(value_of(denominator) > kSrDenominatorMin))
+    throw std::domain_error(std::string("Kirchhoff rod: ") + where +
+                            " turned against its smallest-rotation source (1 + t·t_ref = " +
+                            std::to_string(value_of(denominator)) + ")");
+  return 1.0 / denominator;
+}
+
+template <class T>
+V3<T> block(const std::array<T, 14>& e, int k) {
+  return {e[3 * k], e[3 * k + 1], e[3 * k + 2]};
+}
+
+// Element-level frame data: node 1's unit tangent and untwisted triad, ζ = α₂ + ω.
+template <class T>
+struct ElementFrame {
+  V3<T> t1, n2, n3;
+  T zeta, omega;
+};
+
+template <class T>
+ElementFrame<T> element_frame(const RodElementHistory& h, const std::array<T, 14>& e) {
+  using std::atan2;
+  using std::sqrt;
+  const V3<T> t1 = block(e, 1), t2 = block(e, 3);
+  const T inv1 = 1.0 / sqrt(dot(t1, t1)), inv2 = 1.0 / sqrt(dot(t2, t2));
+  const V3<T> u1 = scale(inv1, t1), u2 = scale(inv2, t2);
+  // Λ̄ᵢ = SR(Rᵢ → t̂ᵢ)
+  const V3<T> r11 = constant<T>(h.frame1.col(0)), r12 = constant<T>(h.frame1.col(1)),
+              r13 = constant<T>(h.frame1.col(2));
+  const T i1 = checked_inverse_denominator(1.0 + dot(r11, u1), "node 1 tangent");
+  const V3<T> n12 = sr_column(r11, r12, u1, i1), n13 = sr_column(r11, r13, u1, i1);
+  const V3<T> r21 = constant<T>(h.frame2.col(0)), r22 = constant<T>(h.frame2.col(1));
+  const T i2 = checked_inverse_denominator(1.0 + dot(r21, u2), "node 2 tangent");
+  const V3<T> n22 = sr_column(r21, r22, u2, i2);
+  // SR(Λ̄₁ → t̂₂) and the angle ω about t̂₂ from it to Λ̄₂.
+  const T i12 = checked_inverse_denominator(1.0 + dot(u1, u2), "element end tangent");
+  const V3<T> m2 = sr_column(u1, n12, u2, i12), m3 = sr_column(u1, n13, u2, i12);
+  T omega = atan2(dot(n22, m3), dot(n22, m2));
+  // Continuous from the committed value: add the multiple of 2π nearest to it.
+  omega = omega + 2.0 * std::numbers::pi *
+                      std::round((h.omega - value_of(omega)) / (2.0 * std::numbers::pi));
+  return {u1, n12, n13, e[13] + omega, omega};
+}
+
+// Strains (ε, K₁, K₂, K₃) at Gauss point p.
+// The shape-function data of one point ξ of an element of length l.
+struct PointData {
+  Vec4 d1, d2;
+  double inv_j0, xi, length;
+};
+
+// Material triad columns d₂, d₃ at a point (filled by point_strains on request).
+template <class T>
+struct PointTriad {
+  V3<T> g1, g2, g3;
+};
+
+template <class T>
+std::array<T, 4> point_strains(const PointData& pd, const ElementFrame<T>& f,
+                               const std::array<T, 14>& e, PointTriad<T>* triad = nullptr) {
+  using std::cos;
+  using std::sin;
+  using std::sqrt;
+  V3<T> a = scale(pd.d1[0], block(e, 0)), b = scale(pd.d2[0], block(e, 0));
+  for (int k = 1; k < 4; ++k) {
+    a = a + scale(pd.d1[k], block(e, k));
+    b = b + scale(pd.d2[k], block(e, k));
+  }
+  const double ij = pd.inv_j0, xi = pd.xi;
+  const T saa = dot(a, a);
+  const T na = sqrt(saa);
+  const V3<T> g = scale(1.0 / na, a);
+  const V3<T> kappa = scale(1.0 / saa, cross(a, b));  // κ = r_x × r_xx / |r_x|² (per dx)
+  const T ic = checked_inverse_denominator(1.0 + dot(f.t1, g), "centreline tangent");
+  const V3<T> g2 = sr_column(f.t1, f.n2, g, ic), g3 = sr_column(f.t1, f.n3, g, ic);
+  const T k2 = dot(kappa, g2), k3 = dot(kappa, g3);
+  const T alpha1 = e[12];
+  const T psi = (1.0 - xi) * alpha1 + xi * f.zeta;
+  const T c = cos(psi), s = sin(psi);
+  // K₁: ψ_x plus the twist rate of the SR frame, −(t̂₁·κ)/(1 + t̂₁·g₁).
+  const T k1 = (f.zeta - alpha1) * (1.0 / pd.length) - dot(f.t1, kappa) * ic;
+  if (triad) *triad = {g, scale(c, g2) + scale(s, g3), scale(c, g3) - scale(s, g2)};
+  return {na * ij - 1.0, k1 * ij, (c * k2 + s * k3) * ij, (c * k3 - s * k2) * ij};
+}
+
+template <class T>
+std::array<T, 14> to_array(const Vec14& e) {
+  std::array<T, 14> out;
+  for (int i = 0; i < 14; ++i) {
+    if constexpr (std::is_same_v<T, double>)
+      out[i] = e[i];
+    else
+      out[i] = T::variable(e[i], i);
+  }
+  return out;
+}
+
+PointData point_data(const RodElementReference& ref, int p) {
+  return {ref.d1[p], ref.d2[p], ref.inv_j0[p], ref.xi[p], ref.length};
+}
+
+Vec3 to_vec3(const V3<double>& v) {
+  return {v.x, v.y, v.z};
+}
+
+}  // namespace
+
+Mat3 smallest_rotation(const Mat3& frame, const Vec3& t) {
+  const Vec3 g = t.normalized();
+  const Vec3 s1 = frame.col(0);
+  const double inv = 1.0 / (1.0 + s1.dot(g));
+  Mat3 out;
+  out.col(0) = g;
+  for (int k = 1; k < 3; ++k) out.col(k) = frame.col(k) - (frame.col(k).dot(g) * inv) * (g + s1);
+  return out;
+}
+
+Mat3 rod_material_triad(const Mat3& reference, const Vec3& t, double alpha) {
+  const Mat3 sr = smallest_rotation(reference, t);
+  const double c = std::cos(alpha), s = std::sin(alpha);
+  Mat3 out = sr;
+  out.col(1) = c * sr.col(1) + s * sr.col(2);
+  out.col(2) = c * sr.col(2) - s * sr.col(1);
+  return out;
+}
+
+Eigen::Matrix2d rod_twist_mass(double polar_inertia, double length) {
+  Eigen::Matrix2d m;
+  m << 2.0, 1.0, 1.0, 2.0;
+  return (polar_inertia * length / 6.0) * m;
+}
+
+RodElementReference RodElementReference::from_reference(const Vec12& e0, double length,
+                                                        RodElementHistory& history) {
+  if (!(length > 0.0)) throw ModelError("Kirchhoff rod element: length must be > 0");
+  for (int node = 0; node < 2; ++node) {
+    const Mat3& r = node == 0 ? history.frame1 : history.frame2;
+    const Vec3 t = e0.segment<3>(6 * node + 3);
+    if (!(t.norm() > 0.0) || (r.transpose() * r - Mat3::Identity()).norm() > 1e-10 ||
+        r.determinant() < 0.0 || (r.col(0) - t.normalized()).norm() > 1e-10)
+      throw ModelError("Kirchhoff rod element: the reference triad of node " +
+                       std::to_string(node + 1) +
+                       " is not a right-handed orthonormal triad with the unit reference tangent "
+                       "as first column");
+  }
+  RodElementReference ref;
+  ref.length = length;
+  ref.e0 = e0;
+  const GaussRule rule = gauss_legendre_unit(kRodGaussPoints);
+  for (int p = 0; p < kRodGaussPoints; ++p) {
+    const double xi = rule.points[p];
+    ref.xi[p] = xi;
+    ref.d1[p] = hermite::first_derivative(xi, length);
+    ref.d2[p] = hermite::second_derivative(xi, length);
+    Vec3 a = Vec3::Zero();
+    for (int k = 0; k < 4; ++k) a += ref.d1[p][k] * e0.segment<3>(3 * k);
+    const double j0 = a.norm();
+    if (!(j0 > 0.0)) throw ModelError("Kirchhoff rod element: vanishing reference slope");
+    ref.inv_j0[p] = 1.0 / j0;
+    ref.weight[p] = rule.weights[p] * length * j0;
+  }
+  Vec14 e = Vec14::Zero();
+  e.head<12>() = e0;
+  history.omega = 0.0;
+  const auto x = to_array<double>(e);
+  const ElementFrame<double> f = element_frame(history, x);
+  history.omega = f.omega;
+  for (int p = 0; p < kRodGaussPoints; ++p) {
+    const auto s = point_strains(point_data(ref, p), f, x);
+    ref.k0[p] = Vec3(s[1], s[2], s[3]);
+  }
+  return ref;
+}
+
+RodPointState rod_point_state(const RodElementReference& ref, const RodElementHistory& history,
+                              const Vec14& e, double xi) {
+  const Vec4 d1 = hermite::first_derivative(xi, ref.length);
+  Vec3 a0 = Vec3::Zero();
+  for (int k = 0; k < 4; ++k) a0 += d1[k] * ref.e0.segment<3>(3 * k);
+  const PointData pd{d1, hermite::second_derivative(xi, ref.length), 1.0 / a0.norm(), xi,
+                     ref.length};
+  const auto x = to_array<double>(e);
+  const ElementFrame<double> f = element_frame(history, x);
+  PointTriad<double> t;
+  const auto s = point_strains(pd, f, x, &t);
+  RodPointState out;
+  out.triad.col(0) = to_vec3(t.g1);
+  out.triad.col(1) = to_vec3(t.g2);
+  out.triad.col(2) = to_vec3(t.g3);
+  out.axial_strain = s[0];
+  out.curvature = Vec3(s[1], s[2], s[3]);
+  return out;
+}
+
+RodMomentLoad rod_end_moment(const Mat3& reference, const Vec3& t, const Vec3& moment) {
+  using J = Jet<3, false>;
+  const V3<J> tv{J::variable(t.x(), 0), J::variable(t.y(), 1), J::variable(t.z(), 2)};
+  const J inv = 1.0 / sqrt(dot(tv, tv));
+  const V3<J> u = scale(inv, tv);
+  const V3<J> e = constant<J>(reference.col(0)), m = constant<J>(moment);
+  const J ic = checked_inverse_denominator(1.0 + dot(e, u), "loaded node tangent");
+  const J mt = dot(m, u);
+  const V3<J> q = scale(inv, cross(m, u) - scale(mt * ic, cross(e, u)));
+  RodMomentLoad out;
+  out.force = Vec4(q.x.v, q.y.v, q.z.v, mt.v);
+  out.jacobian.setZero();
+  out.jacobian.block<1, 3>(0, 0) = q.x.g.transpose();
+  out.jacobian.block<1, 3>(1, 0) = q.y.g.transpose();
+  out.jacobian.block<1, 3>(2, 0) = q.z.g.transpose();
+  out.jacobian.block<1, 3>(3, 0) = mt.g.transpose();
+  return out;
+}
+
+double rod_element_omega(const RodElementHistory& history, const Vec14& e) {
+  return element_frame(history, to_array<double>(e)).omega;
+}
+
+void evaluate_rod_element(const RodSection& section, const RodElementReference& ref,
+                          const RodElementHistory& history, const Vec14& e, const Vec14& e_dot,
+                          const RodEvalRequest& request, RodElementResult& out) {
+  const std::array<double, 4> stiff{section.axial_stiffness, section.torsional_stiffness,
+                                    section.bending_stiffness_2, section.bending_stiffness_3};
+  const std::array<double, 4> damp{section.axial_damping, section.torsional_damping,
+                                   section.bending_damping, section.bending_damping};
+  const bool damping = section.has_damping();
+  out.energy = 0.0;
+  out.force.setZero();
+  if (request.stiffness) out.stiffness.setZero();
+  if (request.damping_matrix) out.damping.setZero();
+
+  // One pass per Gauss point over the four strains of a jet type J (with or without Hessians).
+  auto run = [&](auto tag) {
+    using J = decltype(tag);
+    const auto x = to_array<J>(e);
+    const ElementFrame<J> f = element_frame(history, x);
+    for (int p = 0; p < kRodGaussPoints; ++p) {
+      const auto s = point_strains(point_data(ref, p), f, x);
+      const double w = ref.weight[p];
+      if (p == kRodGaussPoints / 2) out.strain_mid = Vec3(s[1].v, s[2].v, s[3].v);
+      for (int k = 0; k < 4; ++k) {
+        const double d = s[k].v - (k == 0 ? 0.0 : ref.k0[p][k - 1]);
+        out.energy += 0.5 * w * stiff[k] * d * d;
+        double rate = 0.0;
+        if (damping && damp[k] > 0.0) rate = s[k].g.dot(e_dot);
+        const double sigma = stiff[k] * d + damp[k] * rate;  // stress resultant of strain k
+        out.force.noalias() += (w * sigma) * s[k].g;
+        if constexpr (std::is_same_v<J, Jet<14, true>>) {
+          if (request.stiffness) {
+            out.stiffness.noalias() += (w * stiff[k]) * s[k].g * s[k].g.transpose();
+            out.stiffness.noalias() += (w * sigma) * s[k].h;
+            if (damping && damp[k] > 0.0) {
+              const Vec14 he = s[k].h * e_dot;  // ∂(c ṡ)/∂e = c (H ė)ᵀ
+              out.stiffness.noalias() += (w * damp[k]) * s[k].g * he.transpose();
+            }
+          }
+        }
+        if (request.damping_matrix && damp[k] > 0.0)
+          out.damping.noalias() += (w * damp[k]) * s[k].g * s[k].g.transpose();
+      }
+    }
+  };
+  if (request.stiffness)
+    run(Jet<14, true>{});
+  else
+    run(Jet<14, false>{});
+}
+
+}  // namespace ancf
