@@ -10,7 +10,7 @@ builder.to_toml()).
             geometry={"kind": "straight", "start": [0, 0, 0], "end": [1, 0, 0]},
             section={"EA": 1e5, "EI": 1e-2, "mass_per_length": 0.1})
     b.joint(kind="pin", at={"cable": "rope", "node": 0})
-    b.probe(kind="node", cable="rope", node=-1, label="tip")
+    b.probe(kind="node", at={"cable": "rope", "node": -1}, label="tip")
     b.integrator(method="genalpha", t_end=1.0, genalpha={"step": 1e-3})
     scene = b.build()
 """

@@ -214,5 +214,8 @@ def test_newton_failure_names_the_component(small_pendulum):
 def test_run_function_and_outputs(tmp_path, small_pendulum_file):
     sim = ancf.run(str(small_pendulum_file), out=str(tmp_path / "o"), method="genalpha")
     assert sim.method == "genalpha" and (tmp_path / "o" / "run.json").exists()
+    (tmp_path / "o" / "run.json").unlink()
+    sim.write_record()
+    assert json.loads((tmp_path / "o" / "run.json").read_text())["status"] == "completed"
     d = sim.probe_dict()
     assert list(d) == sim.probe_columns and d["t"][-1] == 0.05
