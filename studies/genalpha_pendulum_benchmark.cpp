@@ -13,6 +13,7 @@
 //
 // Usage: ancf-bench-genalpha [--elements N] [--step H] [--rho R] [--runs K] [--rtol TOL]
 //                            [--reuse-rate R] [--extrapolate] [--no-reference] [--profile]
+//                            [--pivot-growth]   (KLU refactorization check of 3e3daf4)
 #include <fmt/format.h>
 #include <algorithm>
 #include <array>
@@ -107,7 +108,7 @@ int main(int argc, char** argv) {
   double step = 1e-3, rho = 0.8, rtol = 1e-6, reuse_rate = GeneralizedAlphaOptions{}.max_reuse_rate;
   bool extrapolate = false;
   int runs = 9;
-  bool reference = true, profile = false;
+  bool reference = true, profile = false, pivot_growth = false;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     auto value = [&]() -> const char* {
@@ -135,11 +136,14 @@ int main(int argc, char** argv) {
       reference = false;
     else if (arg == "--profile")
       profile = true;
+    else if (arg == "--pivot-growth")
+      pivot_growth = true;
     else {
-      std::fprintf(stderr,
-                   "usage: %s [--elements N] [--step H] [--rho R] [--runs K] [--rtol TOL] "
-                   "[--reuse-rate R] [--extrapolate] [--no-reference] [--profile]\n",
-                   argv[0]);
+      std::fprintf(
+          stderr,
+          "usage: %s [--elements N] [--step H] [--rho R] [--runs K] [--rtol TOL] "
+          "[--reuse-rate R] [--extrapolate] [--no-reference] [--profile] [--pivot-growth]\n",
+          argv[0]);
       return 2;
     }
   }
@@ -156,6 +160,7 @@ int main(int argc, char** argv) {
   fast.atol_position = 1e-2 * rtol;
   fast.atol_velocity = rtol;
   fast.atol_multiplier = rtol;
+  if (pivot_growth) fast.refactor_check = ancf::RefactorCheck::pivot_growth;
 
   std::vector<double> seconds;
   Run last;

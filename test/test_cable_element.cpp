@@ -192,6 +192,20 @@ TEST(CableElement, StiffnessIsForceJacobian) {
   std::printf("max ||K - K^T|| / ||K|| (no damping): %.2e\n", max_asym);
 }
 
+TEST(CableElement, ForceOnlyRequestGivesTheSameForceAndEnergy) {
+  // The residual path (no stiffness requested) is its own compile-time instantiation without the
+  // Hessian: it must give the force and energy of the full evaluation (same formulas; a few ε of
+  // reassociation at most).
+  for (const Case& c : make_cases()) {
+    const CableElementResult full = evaluate(c.section, c.ref, c.e, c.e_dot);
+    CableElementResult force_only;
+    evaluate_cable_element(c.section, c.ref, c.e, c.e_dot, {}, force_only);
+    EXPECT_LE((force_only.force - full.force).norm(), 4 * kEps * full.force.norm()) << c.detail;
+    EXPECT_LE(std::abs(force_only.energy - full.energy), 4 * kEps * std::abs(full.energy))
+        << c.detail;
+  }
+}
+
 TEST(CableElement, DampingMatrixIsForceVelocityJacobian) {
   std::map<std::string, fdcheck::Result> worst;
   for (const Case& c : make_cases()) {

@@ -78,11 +78,35 @@ TEST(KluSolver, SolvesAndRefactorsOnAFixedPattern) {
     const VecX expected = dense.partialPivLu().solve(b);
     klu.solve(as_span(b));
     // Backward-stable solves of a well-conditioned system agree to a few ε·cond.
-    EXPECT_LT((b - expected).lpNorm<Eigen::Infinity>(), 100 * kEps * expected.lpNorm<Eigen::Infinity>());
+    EXPECT_LT((b - expected).lpNorm<Eigen::Infinity>(),
+              100 * kEps * expected.lpNorm<Eigen::Infinity>());
   }
   EXPECT_EQ(klu.full_factorizations(), 1);
   EXPECT_EQ(klu.refactorizations(), 2);
   EXPECT_GT(klu.rcond(), 0.0);
+}
+
+TEST(KluSolver, DiagonalRefactorCheckPivotsAfreshWhenTheOldPivotVanishes) {
+  // Dense 2×2: the first factorization pivots on a00 = 2; with a00 = 1e-15 the old order gives
+  // u00 = 1e-15, u11 ≈ −1e15 (rcond ~1e-30), which RefactorCheck::diagonal must refuse.
+  SparsityPattern p(2);
+  for (Index c = 0; c < 2; ++c)
+    for (Index r = 0; r < 2; ++r) p.add(r, c);
+  p.freeze();
+  for (const RefactorCheck check : {RefactorCheck::diagonal, RefactorCheck::pivot_growth}) {
+    KluSolver klu(p);
+    klu.set_refactor_check(check);
+    klu.factor(std::vector<double>{2.0, 1.0, 1.0, 1.0});  // column-major [[2, 1], [1, 1]]
+    klu.factor(std::vector<double>{3.0, 1.0, 1.0, 1.0});  // same pivots fine: a refactorization
+    EXPECT_EQ(klu.refactorizations(), 1);
+    klu.factor(std::vector<double>{1e-15, 1.0, 1.0, 1.0});
+    EXPECT_EQ(klu.full_factorizations(), 2);
+    std::vector<double> b{1.0, 2.0};  // x0 = 1/(1 − 1e-15), x1 = 1 − 1e-15 x0
+    klu.solve(b);
+    const double x0 = 1.0 / (1.0 - 1e-15);
+    EXPECT_NEAR(b[0], x0, 4 * kEps);
+    EXPECT_NEAR(b[1], 1.0 - 1e-15 * x0, 4 * kEps);
+  }
 }
 
 TEST(KluSolver, ReportsASingularMatrix) {

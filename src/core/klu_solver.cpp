@@ -77,10 +77,14 @@ void KluSolver::factor(std::span<const double> values) {
   Impl& k = *impl_;
   if (pivots_valid_ && k.numeric) {
     const bool ok = klu_l_refactor(ap, ai, ax, k.symbolic, k.numeric, &k.common) == 1;
-    // Pivot growth check: refactor keeps the old pivot order, which can be poor once values
-    // have changed a lot; fall back to a fresh factorization then.
-    if (ok && klu_l_rgrowth(ap, ai, ax, k.symbolic, k.numeric, &k.common) == 1 &&
-        k.common.rgrowth > 1e-10 && k.common.status == KLU_OK) {
+    // Refactor keeps the old pivot order, which can be poor once values have changed a lot;
+    // fall back to a fresh factorization then (RefactorCheck says how that is detected).
+    const bool good =
+        ok && (check_ == RefactorCheck::pivot_growth
+                   ? klu_l_rgrowth(ap, ai, ax, k.symbolic, k.numeric, &k.common) == 1 &&
+                         k.common.rgrowth > 1e-10
+                   : klu_l_rcond(k.symbolic, k.numeric, &k.common) == 1 && k.common.rcond > 1e-13);
+    if (good && k.common.status == KLU_OK) {
       ++refactorizations_;
       return;
     }

@@ -66,6 +66,9 @@ inline double curvature_squared_value(const Vec3& a, const Vec3& b, int p) {
   return std::max(saa * sbb - sab * sab, 0.0) * inverse_power(saa, p);
 }
 
+// kHessian = false (residual assembly): value and gradient only; the Hessian is ~3/4 of the
+// work and is not needed for the force.
+template <bool kHessian>
 inline CurvatureSquared curvature_squared(const Vec3& a, const Vec3& b, int p) {
   const double saa = a.squaredNorm(), sbb = b.squaredNorm(), sab = a.dot(b);
   const double phi = std::max(saa * sbb - sab * sab, 0.0);
@@ -74,16 +77,16 @@ inline CurvatureSquared curvature_squared(const Vec3& a, const Vec3& b, int p) {
   const double psi2 = 4.0 * p * (p + 1.0) * psi / (saa * saa);  // ψ_aa = psi1 I + psi2 a aᵀ
   const Vec3 phi_a = 2.0 * sbb * a - 2.0 * sab * b;
   const Vec3 phi_b = 2.0 * saa * b - 2.0 * sab * a;
-  const Mat3 id = Mat3::Identity();
-  const Mat3 phi_aa = 2.0 * sbb * id - 2.0 * b * b.transpose();
-  const Mat3 phi_bb = 2.0 * saa * id - 2.0 * a * a.transpose();
-  const Mat3 phi_ab = 4.0 * a * b.transpose() - 2.0 * b * a.transpose() - 2.0 * sab * id;
   const Vec3 psi_a = psi1 * a;
-
   CurvatureSquared c;
   c.k2 = phi * psi;
   c.grad.head<3>() = phi_a * psi + phi * psi_a;
   c.grad.tail<3>() = phi_b * psi;
+  if constexpr (!kHessian) return c;
+  const Mat3 id = Mat3::Identity();
+  const Mat3 phi_aa = 2.0 * sbb * id - 2.0 * b * b.transpose();
+  const Mat3 phi_bb = 2.0 * saa * id - 2.0 * a * a.transpose();
+  const Mat3 phi_ab = 4.0 * a * b.transpose() - 2.0 * b * a.transpose() - 2.0 * sab * id;
   c.hess.topLeftCorner<3, 3>() = phi_aa * psi + phi_a * psi_a.transpose() +
                                  psi_a * phi_a.transpose() +
                                  phi * (psi1 * id + psi2 * a * a.transpose());
@@ -114,6 +117,21 @@ inline void scatter_matrix(const Vec4& d1, const Vec4& d2, const Eigen::Matrix<d
                                      (d2[m] * d1[n]) * hba + (d2[m] * d2[n]) * hbb;
 }
 
+// The same for a symmetric h (Hessians: haa, hbb symmetric, hba = habᵀ): the blocks m ≤ n are
+// formed and mirrored, half the work of the general scatter.
+inline void scatter_symmetric_matrix(const Vec4& d1, const Vec4& d2,
+                                     const Eigen::Matrix<double, 6, 6>& h, Mat12& k) {
+  const Mat3 haa = h.topLeftCorner<3, 3>(), hab = h.topRightCorner<3, 3>();
+  const Mat3 hba = h.bottomLeftCorner<3, 3>(), hbb = h.bottomRightCorner<3, 3>();
+  for (int m = 0; m < 4; ++m)
+    for (int n = m; n < 4; ++n) {
+      const Mat3 block = (d1[m] * d1[n]) * haa + (d1[m] * d2[n]) * hab + (d2[m] * d1[n]) * hba +
+                         (d2[m] * d2[n]) * hbb;
+      k.block<3, 3>(3 * m, 3 * n) += block;
+      if (n != m) k.block<3, 3>(3 * n, 3 * m) += block.transpose();
+    }
+}
+
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
 
@@ -124,7 +142,7 @@ struct AxialPoint {
   Mat3 haa, daa;
 };
 
-template <bool kDamping>
+template <bool kDamping, bool kStiffness>
 inline AxialPoint axial_point(const CableSection& sec, const Vec3& a, const Vec3& a_dot, double w,
                               double inv_j0, const CableEvalRequest& req, double& energy) {
   const double ea = sec.axial_stiffness, ca = sec.axial_damping;
@@ -133,7 +151,7 @@ inline AxialPoint axial_point(const CableSection& sec, const Vec3& a, const Vec3
   energy += 0.5 * w * n_axial * (s.eps + sec.prestrain);
   AxialPoint p;
   p.ga = (w * n_axial) * s.eps_a;
-  if (req.stiffness) {
+  if constexpr (kStiffness) {
     // CableTangent::tension_only: no geometric stiffness from compression (N < 0).
     const bool drop = req.tangent == CableTangent::tension_only && n_axial < 0.0;
     p.haa = (w * ea) * s.eps_a * s.eps_a.transpose();
@@ -143,7 +161,7 @@ inline AxialPoint axial_point(const CableSection& sec, const Vec3& a, const Vec3
     if (ca > 0.0) {
       const double eps_dot = s.eps_a.dot(a_dot);
       p.ga += (w * ca * eps_dot) * s.eps_a;
-      if (req.stiffness)
+      if (kStiffness)
         p.haa += (w * ca) * (s.eps_a * (s.eps_aa * a_dot).transpose() + eps_dot * s.eps_aa);
       if (req.damping_matrix) p.daa = (w * ca) * s.eps_a * s.eps_a.transpose();
     }
@@ -159,21 +177,23 @@ struct BendingPoint {
   bool has_damping_matrix = false;
 };
 
-template <bool kDamping>
+template <bool kDamping, bool kStiffness>
 inline BendingPoint bending_point(const CableSection& sec, const Vec3& a, const Vec3& b,
                                   const Vec6& x_dot, double w, double kappa_ref,
                                   const CableEvalRequest& req, double& energy) {
   const double ei = sec.bending_stiffness, cb = sec.bending_damping;
-  const CurvatureSquared c = curvature_squared(a, b, curvature_power(sec.strain));
-  const double kappa = std::sqrt(c.k2);
-  energy += 0.5 * w * ei * (kappa - kappa_ref) * (kappa - kappa_ref);
+  const CurvatureSquared c = curvature_squared<kStiffness>(a, b, curvature_power(sec.strain));
+  // A straight reference (κ₀ = 0) needs no √: U_b = ½ EI K² and h' = ½, h'' = 0 below.
+  const double kappa = kappa_ref > 0.0 ? std::sqrt(c.k2) : 0.0;
+  energy += kappa_ref > 0.0 ? 0.5 * w * ei * (kappa - kappa_ref) * (kappa - kappa_ref)
+                            : 0.5 * w * ei * c.k2;
   const double kappa0 = kappa > kVanishingCurvatureRatio * kappa_ref ? kappa_ref : 0.0;
   // U_b = EI h(K²) with h = ½K² − κ₀√K² + ½κ₀²: h' = ½ − κ₀/(2κ), h'' = κ₀/(4κ³).
   const double h1 = kappa0 > 0.0 ? 0.5 - 0.5 * kappa0 / kappa : 0.5;
   const double h2 = kappa0 > 0.0 ? 0.25 * kappa0 / (kappa * kappa * kappa) : 0.0;
   BendingPoint p;
   p.gx = (w * ei * h1) * c.grad;
-  if (req.stiffness) p.hx = (w * ei) * (h1 * c.hess + h2 * c.grad * c.grad.transpose());
+  if (kStiffness) p.hx = (w * ei) * (h1 * c.hess + h2 * c.grad * c.grad.transpose());
   if constexpr (kDamping) {
     if (cb > 0.0) {
       // Kelvin–Voigt on κ̃ = √(K² + κ_s²) (docs/formulation.md): f = c_b κ̃̇ ∇κ̃ = c_b φ χ̇ ∇χ
@@ -183,7 +203,7 @@ inline BendingPoint bending_point(const CableSection& sec, const Vec3& a, const 
       const double phi = 0.25 / (c.k2 + ks * ks);
       const double chi_dot = c.grad.dot(x_dot);
       p.gx += (w * cb * phi * chi_dot) * c.grad;
-      if (req.stiffness)
+      if (kStiffness)
         p.hx += (w * cb) * (phi * (chi_dot * c.hess + c.grad * (c.hess * x_dot).transpose()) -
                             4.0 * phi * phi * chi_dot * c.grad * c.grad.transpose());
       if (req.damping_matrix) {
@@ -195,7 +215,9 @@ inline BendingPoint bending_point(const CableSection& sec, const Vec3& a, const 
   return p;
 }
 
-template <bool kBending, bool kDamping>
+// kStiffness mirrors req.stiffness at compile time: the force-only instantiation (residual
+// assembly) carries no Hessian code.
+template <bool kBending, bool kDamping, bool kStiffness>
 void evaluate(const CableSection& sec, const CableElementReference& ref, const Vec12& e,
               const Vec12& e_dot, const CableEvalRequest& req, CableElementResult& out) {
   const Eigen::Map<const Mat34> E(e.data());
@@ -204,7 +226,7 @@ void evaluate(const CableSection& sec, const CableElementReference& ref, const V
 
   out.energy = 0.0;
   out.force.setZero();
-  if (req.stiffness) out.stiffness.setZero();
+  if (kStiffness) out.stiffness.setZero();
   if (kDamping && req.damping_matrix) out.damping.setZero();
 
   // Bending terms at point g of ref.bending, with the axial gradient/Hessian `axial` of the same
@@ -216,15 +238,22 @@ void evaluate(const CableSection& sec, const CableElementReference& ref, const V
     const Vec3 a = E * d1, b = E * d2;
     Vec6 x_dot = Vec6::Zero();
     if constexpr (kDamping) x_dot << Edot * d1, Edot * d2;
-    BendingPoint p =
-        bending_point<kDamping>(sec, a, b, x_dot, pts.weight[g], pts.kappa0[g], req, out.energy);
+    BendingPoint p = bending_point<kDamping, kStiffness>(sec, a, b, x_dot, pts.weight[g],
+                                                         pts.kappa0[g], req, out.energy);
     if (axial) {
       p.gx.template head<3>() += axial->ga;
-      if (req.stiffness) p.hx.template topLeftCorner<3, 3>() += axial->haa;
+      if (kStiffness) p.hx.template topLeftCorner<3, 3>() += axial->haa;
     }
     scatter_force(d1, p.gx.template head<3>(), out.force);
     scatter_force(d2, p.gx.template tail<3>(), out.force);
-    if (req.stiffness) scatter_matrix(d1, d2, p.hx, out.stiffness);
+    if (kStiffness) {
+      // Without damping p.hx is the Hessian of the energy (symmetric); the damping terms'
+      // ∂f/∂e is not.
+      if constexpr (kDamping)
+        scatter_matrix(d1, d2, p.hx, out.stiffness);
+      else
+        scatter_symmetric_matrix(d1, d2, p.hx, out.stiffness);
+    }
     if (kDamping && p.has_damping_matrix) scatter_matrix(d1, d2, p.dx, out.damping);
   };
 
@@ -233,14 +262,14 @@ void evaluate(const CableSection& sec, const CableElementReference& ref, const V
     const Vec4& d1 = ref.axial.d1[g];
     Vec3 a_dot = Vec3::Zero();
     if (axial_damping) a_dot = Edot * d1;
-    const AxialPoint p = axial_point<kDamping>(sec, E * d1, a_dot, ref.axial.weight[g],
-                                               ref.axial.inv_j0[g], req, out.energy);
+    const AxialPoint p = axial_point<kDamping, kStiffness>(sec, E * d1, a_dot, ref.axial.weight[g],
+                                                           ref.axial.inv_j0[g], req, out.energy);
     if (axial_damping && req.damping_matrix) scatter_matrix(d1, p.daa, out.damping);
     if (fused) {
       bending(g, &p);
     } else {
       scatter_force(d1, p.ga, out.force);
-      if (req.stiffness) scatter_matrix(d1, p.haa, out.stiffness);
+      if (kStiffness) scatter_matrix(d1, p.haa, out.stiffness);
     }
   }
   if constexpr (kBending)
@@ -293,17 +322,23 @@ void evaluate_cable_element(const CableSection& section, const CableElementRefer
                             CableElementResult& out) {
   const bool bending = section.has_bending();
   const bool damping = section.has_damping();
-  if (bending) {
-    if (damping)
-      evaluate<true, true>(section, ref, e, e_dot, request, out);
-    else
-      evaluate<true, false>(section, ref, e, e_dot, request, out);
-  } else {
-    if (damping)
-      evaluate<false, true>(section, ref, e, e_dot, request, out);
-    else
-      evaluate<false, false>(section, ref, e, e_dot, request, out);
-  }
+  auto run = [&]<bool kStiffness>() {
+    if (bending) {
+      if (damping)
+        evaluate<true, true, kStiffness>(section, ref, e, e_dot, request, out);
+      else
+        evaluate<true, false, kStiffness>(section, ref, e, e_dot, request, out);
+    } else {
+      if (damping)
+        evaluate<false, true, kStiffness>(section, ref, e, e_dot, request, out);
+      else
+        evaluate<false, false, kStiffness>(section, ref, e, e_dot, request, out);
+    }
+  };
+  if (request.stiffness)
+    run.template operator()<true>();
+  else
+    run.template operator()<false>();
 }
 
 double cable_axial_strain(StrainMeasure strain, const Vec12& e, double xi, double length,

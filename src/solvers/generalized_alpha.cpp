@@ -59,6 +59,8 @@ GeneralizedAlphaStepper::GeneralizedAlphaStepper(SecondOrderProblem& problem,
       klu_(problem.iteration_pattern()),
       projector_(problem.iteration_pattern()),
       controller_(options.controller, 2) {
+  klu_.set_refactor_check(options_.refactor_check);
+  projector_.set_refactor_check(options_.refactor_check);
   if (!(options_.step_size > 0.0))
     throw std::invalid_argument("generalized-α: the step size must be positive");
   if (options_.formulation == GeneralizedAlphaFormulation::index3 && options_.rho_infinity == 1.0)

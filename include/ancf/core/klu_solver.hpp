@@ -13,10 +13,19 @@ namespace ancf {
 /// changed it (the contact pattern of DESIGN §5 follows the near pairs). factor()
 /// performs a full numeric factorization with pivoting the first time and a cheaper refactor
 /// (same pivot order) afterwards; refactor_threshold guards against pivot growth: if KLU's
-/// reciprocal pivot growth estimate drops below it, a full factorization with fresh pivoting is done.
+/// reciprocal pivot growth estimate drops below it, a full factorization with fresh pivoting is
+/// done. That estimate costs a pass over A and U (~20 % of a refactorization of a small banded
+/// matrix); RefactorCheck::diagonal replaces it by the O(n) diagonal estimate of rcond(), which
+/// catches a stale pivot order that has become (nearly) singular but not a moderate growth.
 ///
 /// Ownership: keeps a reference to `pattern`, which must outlive the solver; after the pattern
 /// object is changed, call analyze() before the next factor().
+/// Guard of a refactorization (same pivot order) against a poor pivot order.
+enum class RefactorCheck {
+  pivot_growth,  ///< KLU's reciprocal pivot growth > 1e-10 (klu_rgrowth: O(nnz(A) + nnz(U)))
+  diagonal,      ///< min|u_ii|/max|u_ii| > 1e-13 (klu_rcond: O(n))
+};
+
 class KluSolver {
  public:
   explicit KluSolver(const SparsityPattern& pattern);
@@ -32,6 +41,8 @@ class KluSolver {
   void analyze();
   /// Force the next factor() to pivot afresh (use when values changed by orders of magnitude).
   void reset_pivoting() { pivots_valid_ = false; }
+  /// How a refactorization is checked before it is accepted (default pivot_growth).
+  void set_refactor_check(RefactorCheck check) { check_ = check; }
   /// Solve A x = b in place. Precondition: factor() succeeded.
   void solve(std::span<double> rhs);
 
@@ -53,6 +64,7 @@ class KluSolver {
   std::unique_ptr<Impl> impl_;
   const SparsityPattern& pattern_;
   bool pivots_valid_ = false;
+  RefactorCheck check_ = RefactorCheck::pivot_growth;
   int full_factorizations_ = 0;
   int refactorizations_ = 0;
   int symbolic_analyses_ = 0;

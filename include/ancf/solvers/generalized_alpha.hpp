@@ -132,6 +132,10 @@ struct GeneralizedAlphaOptions {
   /// back along its direction (Deuflhard's natural monotonicity test) up to this many times per
   /// matrix before the attempt fails; 0: off.
   int max_damping_halvings = 0;
+  /// How a KLU refactorization with the old pivot order is checked (klu_solver.hpp): the O(n)
+  /// diagonal estimate (default) or KLU's pivot growth, a pass over A and U that was ~20 % of
+  /// each refactorization on the benchmark pendulum (studies/README.md).
+  RefactorCheck refactor_check = RefactorCheck::diagonal;
 
   /// On Newton failure (with a fresh matrix) the step is halved from the last accepted state, at
   /// most this many times in a row; after recovery_steps accepted steps at a reduced size it is
