@@ -5,6 +5,7 @@ ANCF_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 ANCF_PACKAGES=(g++ cmake make pkg-config libeigen3-dev libfmt-dev libsundials-dev
                libsuitesparse-dev libgtest-dev libgmock-dev libbenchmark-dev
                libtomlplusplus-dev libcli11-dev python3-matplotlib
+               libopenmpi-dev openmpi-bin
                python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest)
 
 # Install only the Debian packages that are not installed yet (fast when nothing is missing).

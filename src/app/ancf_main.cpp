@@ -51,7 +51,31 @@ int main(int argc, char** argv) {
                   "refuse runs that imply more steps (default 1e7)")
       ->check(CLI::PositiveNumber);
 
+  run->add_option("--set", run_options.set,
+                  "scene value KEY=VALUE by its key path, e.g. body[1].rotation.angle=0.1 "
+                  "(repeatable; docs/scenes.md)");
+  run->add_flag("--capture-events", run_options.capture_events,
+                "detect the capture example's events (shared/CAPTURE.md) into run.json");
+  run->add_option("--results", run_options.results_file,
+                  "also write a flat TOML summary (status, counters, events) to this file");
+
+  ancf::app::SweepOptions sweep_options;
+  CLI::App* sweep =
+      app.add_subcommand("sweep", "run a scene over a design of varied values (docs/sweeps.md)");
+  sweep->add_option("SWEEP", sweep_options.sweep_path, "sweep file (TOML)")->required();
+  sweep->add_option("-j,--workers", sweep_options.workers, "worker processes (default: the cores)")
+      ->check(CLI::PositiveNumber);
+  sweep->add_option("--out", sweep_options.out_dir,
+                    "sweep folder (default: the file's [sweep] out)");
+  sweep->add_option("--ancf", sweep_options.ancf,
+                    "ancf executable for the cases (default: this one)");
+  sweep->add_flag("--mpi", sweep_options.mpi,
+                  "distribute over MPI ranks (automatic under mpirun/srun when built with MPI)");
+  sweep->add_flag("--restart", sweep_options.restart,
+                  "discard the results of an earlier run of this sweep instead of resuming it");
+
   CLI11_PARSE(app, argc, argv);
+  if (*sweep) return ancf::app::sweep_command(sweep_options, argv[0]);
   if (*check) return ancf::app::check_command(scene, check_max_steps);
   if (*info) return ancf::app::info_command(scene);
   return ancf::app::run_command(run_options);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "ancf/io/run_limits.hpp"
 
@@ -29,8 +30,27 @@ struct RunOptions {
   bool progress = false;  ///< force the progress bar even when stderr is not a terminal
   bool quiet = false;     ///< no summary table
   double max_steps = kDefaultMaxSteps;  ///< refuse runs that imply more steps (run_limits.hpp)
+  /// Scene value overrides KEY=VALUE (scene_overrides.hpp), applied before the scene is built.
+  std::vector<std::string> set;
+  /// Also detect the capture example's events (capture_events.hpp) and write them to run.json
+  /// and to the results file.
+  bool capture_events = false;
+  /// "" or a file to write a flat TOML summary to (status, message, wall time, counters,
+  /// events): what `ancf sweep` reads back from each case.
+  std::string results_file;
 };
 /// `ancf run SCENE …`: integrate and write probes.csv, VTK frames, run.json into out_dir.
 int run_command(const RunOptions& options);
+
+/// `ancf sweep SWEEP.toml …` (docs/sweeps.md): many runs of one scene with varied values.
+struct SweepOptions {
+  std::string sweep_path;
+  long workers = 0;      ///< worker processes (0: from the cores)
+  std::string ancf;      ///< the ancf executable to run each case with ("": this one)
+  bool mpi = false;      ///< force MPI mode (otherwise detected from the launcher's variables)
+  std::string out_dir;   ///< "" : the sweep file's [sweep] out
+  bool restart = false;  ///< discard finished cases instead of resuming
+};
+int sweep_command(const SweepOptions& options, const char* argv0);
 
 }  // namespace ancf::app

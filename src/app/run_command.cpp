@@ -6,12 +6,18 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
+#include <toml++/toml.h>
+#include <numbers>
+
 #include "ancf/io/run_outputs.hpp"
 #include "ancf/io/run_record.hpp"
+#include "ancf/io/scene_overrides.hpp"
 #include "ancf/io/simulation.hpp"
+#include "ancf/scenes/capture_events.hpp"
 #include "commands.hpp"
 #include "progress_bar.hpp"
 
@@ -43,17 +49,61 @@ std::string read_file(const std::string& path) {
   return s.str();
 }
 
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+/// The capture events as flat name → value (angles in degrees, NaN: did not happen).
+std::vector<std::pair<std::string, double>> event_values(const CaptureEvents& ev) {
+  std::vector<std::pair<std::string, double>> v;
+  for (int i = 0; i < 3; ++i)
+    v.emplace_back(fmt::format("first_contact_rope_{}", i + 1), ev.first_contact[i]);
+  v.emplace_back("first_rope", static_cast<double>(ev.first_rope + 1));
+  v.emplace_back("all_three", ev.all_three);
+  v.emplace_back("stall", ev.stall);
+  v.emplace_back("lock", ev.lock);
+  v.emplace_back("final_tilt_deg", ev.final_tilt / kDeg);
+  v.emplace_back("final_lateral_offset_m", ev.final_lateral_offset);
+  v.emplace_back("ring_angle_at_stall_deg", ev.ring_angle_at_stall / kDeg);
+  for (int i = 0; i < 3; ++i)
+    v.emplace_back(fmt::format("tension_at_lock_{}", i + 1), ev.tension_at_lock[i]);
+  v.emplace_back("peak_contact_force", ev.peak_contact_force);
+  return v;
+}
+
+/// The flat summary `ancf sweep` reads back: written last, so its presence means the run ended.
+void write_results(const std::string& file, const std::string& status, const std::string& message,
+                   double wall, double t_reached, const Counters& counters,
+                   const std::vector<std::pair<std::string, double>>& events) {
+  toml::table root, counts, evs;
+  root.insert("status", status);
+  root.insert("message", message);
+  root.insert("wall_seconds", wall);
+  root.insert("t_reached", t_reached);
+  for (const auto& [name, value] : counters) counts.insert(name, static_cast<int64_t>(value));
+  for (const auto& [name, value] : events) evs.insert(name, value);
+  root.insert("counters", std::move(counts));
+  root.insert("events", std::move(evs));
+  if (const auto dir = std::filesystem::path(file).parent_path(); !dir.empty())
+    std::filesystem::create_directories(dir);
+  const std::string tmp = file + ".tmp";
+  std::ofstream(tmp) << root << '\n';
+  std::rename(tmp.c_str(), file.c_str());  // atomic: a reader sees all of it or nothing
+}
+
 }  // namespace
 
 int run_command(const RunOptions& options) {
   Scene scene;
   const std::string text = read_file(options.scene_path);
   try {
-    scene = load_scene(options.scene_path);
+    std::vector<SceneOverride> overrides;
+    for (const std::string& a : options.set) overrides.push_back(parse_scene_override(a));
+    scene = load_scene(options.scene_path, overrides);
     apply_overrides(options, scene.integrator);
     require_runnable(scene.integrator, scene.output.interval, options.max_steps);
   } catch (const ModelError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
+    if (!options.results_file.empty())
+      write_results(options.results_file, "error", e.what(), 0.0, 0.0, {}, {});
     return 1;
   }
   const IntegratorSettings& s = scene.integrator;
@@ -63,12 +113,17 @@ int run_command(const RunOptions& options) {
   Counters counters;
   SimulationTimings timings;
   std::optional<RunOutputs> out;
+  std::optional<CaptureObserver> capture;
   try {
+    if (options.capture_events) capture.emplace(scene.model);
     out.emplace(scene, options.out_dir);
     ProgressBar bar(s.t_end, options.progress || isatty(fileno(stderr)));
     try {
       SimulationHooks hooks;
-      hooks.output = [&](const SystemState& state) { out->record(state); };
+      hooks.output = [&](const SystemState& state) {
+        out->record(state);
+        if (capture) capture->record(state);
+      };
       hooks.progress = [&](double t) { bar.update(t); };
       simulate(scene.model, s, output_times(scene.output.interval, s.t_end), hooks, counters,
                timings);
@@ -96,8 +151,18 @@ int run_command(const RunOptions& options) {
                    .wall_seconds = wall,
                    .counters = counters,
                    .timings = timings};
-  const JsonObject meta = run_json(scene, record, out ? &*out : nullptr);
+  JsonObject meta = run_json(scene, record, out ? &*out : nullptr);
+  std::vector<std::pair<std::string, double>> events;
+  if (capture) {
+    events = event_values(capture->events());
+    JsonObject e;
+    for (const auto& [name, value] : events) e.set(name, value);
+    meta.set("capture_events", e);
+  }
   if (out) std::ofstream(options.out_dir + "/run.json") << meta.text() << '\n';
+  if (!options.results_file.empty())
+    write_results(options.results_file, status, message, wall, out ? out->last_time() : 0.0,
+                  counters, events);
 
   if (!options.quiet && out) {
     fmt::print("\n{} ({}) {}: t = {:.6g} / {:.6g} s, {} frames in {}\n", scene.name,
