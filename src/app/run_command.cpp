@@ -6,18 +6,12 @@
 
 #include <chrono>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 
 #include "ancf/io/run_metadata.hpp"
 #include "ancf/io/simulation.hpp"
 #include "commands.hpp"
 #include "progress_bar.hpp"
 #include "run_outputs.hpp"
-
-#ifndef ANCF_VERSION
-#define ANCF_VERSION "unknown"
-#endif
 
 namespace ancf::app {
 
@@ -40,18 +34,11 @@ void apply_overrides(const RunOptions& o, IntegratorSettings& s) {
   if (o.h_max >= 0.0) s.ga_controller.h_max = o.h_max;
 }
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 }  // namespace
 
 int run_command(const RunOptions& options) {
   Scene scene;
-  const std::string text = read_file(options.scene_path);
+  const std::string text = read_text(options.scene_path);
   try {
     scene = load_scene(options.scene_path);
     apply_overrides(options, scene.integrator);
@@ -98,7 +85,7 @@ int run_command(const RunOptions& options) {
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  JsonObject opts, counts, results, meta, times;
+  JsonObject opts, counts, results, times;
   opts.set("integrator", ida ? "ida" : "genalpha").set("rtol", s.rtol).set("t_end", s.t_end);
   opts.set("contact_pattern", s.contact_pattern == ContactPatternPolicy::all ? "all" : "near");
   if (ida)
@@ -124,18 +111,12 @@ int run_command(const RunOptions& options) {
         .set("max_energy_change", out->max_energy_change())
         .set("max_position_violation", out->max_position_violation())
         .set("max_velocity_violation", out->max_velocity_violation());
-  meta.set("ancf_version", ANCF_VERSION)
-      .set("scene", options.scene_path)
-      .set("scene_name", scene.name)
-      .set("scene_fnv1a64", fmt::format("{:016x}", fnv1a64(text)))
-      .set("status", status)
-      .set("message", message)
-      .set("wall_time_s", wall)
-      .set("options", opts)
+  JsonObject meta = run_json_header(scene, text, "run", status, message, wall);
+  meta.set("options", opts)
       .set("counters", counts)
       .set("time_s", times)
       .set("results", results);
-  if (out) std::ofstream(options.out_dir + "/run.json") << meta.text() << '\n';
+  if (out) write_run_json(options.out_dir, meta);
 
   if (!options.quiet && out) {
     fmt::print("\n{} ({}) {}: t = {:.6g} / {:.6g} s, {} frames in {}\n", scene.name,
