@@ -48,13 +48,13 @@ int static_command(const StaticOptions& options);
 /// (modes/mode_NNN.pvd) about the initial state or, with about_static, the static equilibrium.
 struct ModesOptions {
   std::string scene_path;
-  long count = 10;             ///< lowest modes reported
-  bool about_static = false;   ///< linearise about the static equilibrium (else the initial state)
-  StaticSettings statics;      ///< its solve
-  int component = -1;          ///< −1: all; 0, 1, 2: x, y or z components only (ModalAnalysisOptions)
-  double amplitude = 0.0;      ///< [m] largest displacement in the animations; 0: extent/10
-  int frames = 24;             ///< frames per period in each mode's series
-  bool vtk = true;             ///< write the mode-shape series
+  long count = 10;            ///< lowest modes reported
+  bool about_static = false;  ///< linearise about the static equilibrium (else the initial state)
+  StaticSettings statics;     ///< its solve
+  int component = -1;      ///< −1: all; 0, 1, 2: x, y or z components only (ModalAnalysisOptions)
+  double amplitude = 0.0;  ///< [m] largest displacement in the animations; 0: extent/10
+  int frames = 24;         ///< frames per period in each mode's series
+  bool vtk = true;         ///< write the mode-shape series
   double max_coordinates = 3000;  ///< refuse larger models (dense O(n³) eigen-analysis)
   std::string out_dir = "out";
   bool quiet = false;

@@ -112,10 +112,7 @@ int run_command(const RunOptions& options) {
         .set("max_position_violation", out->max_position_violation())
         .set("max_velocity_violation", out->max_velocity_violation());
   JsonObject meta = run_json_header(scene, text, "run", status, message, wall);
-  meta.set("options", opts)
-      .set("counters", counts)
-      .set("time_s", times)
-      .set("results", results);
+  meta.set("options", opts).set("counters", counts).set("time_s", times).set("results", results);
   if (out) write_run_json(options.out_dir, meta);
 
   if (!options.quiet && out) {

@@ -2,8 +2,8 @@
 // StaticSolver on StaticModelProblem), shared by `ancf static` and `ancf modes --static`.
 #pragma once
 
-#include "ancf/io/scene.hpp"
 #include "ancf/io/run_metadata.hpp"
+#include "ancf/io/scene.hpp"
 #include "ancf/solvers/static_solver.hpp"
 #include "ancf/system/assembly.hpp"
 
@@ -11,8 +11,8 @@ namespace ancf::app {
 
 /// Command-line settings of the static solve (defaults in docs/statics_and_modes.md).
 struct StaticSettings {
-  int load_steps = 10;               ///< equal load increments 0 → 1 (each may be halved)
-  int max_iterations = 30;           ///< Newton iterations per increment
+  int load_steps = 10;                 ///< equal load increments 0 → 1 (each may be halved)
+  int max_iterations = 30;             ///< Newton iterations per increment
   double increment_tolerance = 1e-11;  ///< StaticSolverOptions::increment_tolerance
 };
 
