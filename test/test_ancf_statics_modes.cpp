@@ -187,3 +187,19 @@ TEST(AncfModes, LoadedSceneNeedsTheStaticOption) {
   EXPECT_EQ(run("modes " + scene + " --static --count 2 --no-vtk --out " + out.string()), 0);
   EXPECT_EQ(csv(out / "modes.csv")["omega"].size(), 2u);
 }
+
+// Reaction probes in `ancf run`: the hinge scene stays at rest, so each integrator's multipliers
+// give the static reaction to its Newton tolerance on λ (generalized-α atol 1e-6 N; IDA rtol 1e-6).
+TEST(AncfRun, HingeReactionProbeDuringARun) {
+  for (const std::string integrator : {"ida", "genalpha"}) {
+    const fs::path out = fs::temp_directory_path() / ("ancf_run_reaction_" + integrator);
+    fs::remove_all(out);
+    ASSERT_EQ(run("run " + (kSource / "test/scenes/statics/hinge_offset_load.toml").string() +
+                  " --integrator " + integrator + " --t-end 0.02 --quiet --out " + out.string()),
+              0);
+    auto p = csv(out / "probes.csv");
+    ASSERT_GE(p["t"].size(), 2u);
+    EXPECT_NEAR(p["hinge.fz"].back(), 10.0, 1e-6) << integrator;
+    EXPECT_NEAR(p["hinge.my"].back(), -5.0, 1e-6) << integrator;
+  }
+}
