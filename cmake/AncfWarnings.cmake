@@ -6,6 +6,10 @@ if(ANCF_SANITIZE)
                                                 -fno-sanitize-recover=undefined)
   target_link_options(ancf_options INTERFACE -fsanitize=address,undefined)
 endif()
+if(ANCF_FUZZ)
+  # Coverage instrumentation for libFuzzer in every library; only the fuzz target links its main.
+  target_compile_options(ancf_options INTERFACE -fsanitize=fuzzer-no-link)
+endif()
 
 # ancf_add_layer(NAME sources... DEPS libs...) : one static library per architectural layer,
 # position-independent (the Python module links them into a shared object) and installed as

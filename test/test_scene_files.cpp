@@ -42,6 +42,25 @@ TEST(SceneFiles, MalformedCorpusHasAtLeastTwentyFiles) {
   EXPECT_GE(scenes_in(kSource / "test/scenes/malformed").size(), 20u);
 }
 
+// The fuzz target's malformed corpus (test/fuzz/malformed: hand-made edge cases and every
+// regression case of a fuzzer finding, docs/fuzzing.md) through the normal loader: each must be
+// refused with a SceneError, never load, crash or throw anything else.
+TEST(SceneFiles, FuzzMalformedCorpusGivesSceneErrors) {
+  std::size_t files = 0;
+  for (const auto& e : fs::directory_iterator(kSource / "test/fuzz/malformed")) {
+    SCOPED_TRACE(e.path().filename().string());
+    ++files;
+    try {
+      (void)load_scene(e.path().string());
+      ADD_FAILURE() << "loaded without error";
+    } catch (const SceneError& error) {
+      EXPECT_NE(std::string(error.what()).find(e.path().string()), std::string::npos)
+          << error.what();
+    }
+  }
+  EXPECT_GE(files, 10u);
+}
+
 TEST(SceneFiles, EachMalformedSceneGivesItsLocatedMessage) {
   for (const fs::path& file : scenes_in(kSource / "test/scenes/malformed")) {
     SCOPED_TRACE(file.filename().string());

@@ -1,4 +1,5 @@
-// The `ancf` command: check, info and run a scene file (docs/scenes.md).
+// The `ancf` command: check, info, run, static and modes of a scene file (docs/scenes.md,
+// docs/statics_and_modes.md).
 #include <CLI/CLI.hpp>
 
 #include "commands.hpp"
@@ -74,8 +75,64 @@ int main(int argc, char** argv) {
   sweep->add_flag("--restart", sweep_options.restart,
                   "discard the results of an earlier run of this sweep instead of resuming it");
 
+
+  auto add_static_options = [](CLI::App* command, ancf::app::StaticSettings& settings) {
+    command
+        ->add_option("--load-steps", settings.load_steps,
+                     "equal load increments from 0 to the full load (default 10)")
+        ->check(CLI::PositiveNumber);
+    command
+        ->add_option("--max-iterations", settings.max_iterations,
+                     "Newton iterations per load increment (default 30)")
+        ->check(CLI::PositiveNumber);
+    command
+        ->add_option("--tolerance", settings.increment_tolerance,
+                     "Newton increment tolerance relative to max(1, |q|_inf) (default 1e-11)")
+        ->check(CLI::PositiveNumber);
+  };
+  ancf::app::StaticOptions static_options;
+  CLI::App* statics =
+      app.add_subcommand("static", "solve the static equilibrium and write its outputs");
+  statics->add_option("SCENE", static_options.scene_path, "scene file (TOML)")->required();
+  add_static_options(statics, static_options.settings);
+  statics->add_option("--out", static_options.out_dir, "output directory (created; default: out)");
+  statics->add_flag("--quiet", static_options.quiet, "no summary table");
+
+  ancf::app::ModesOptions modes_options;
+  std::string component = "all";
+  CLI::App* modes =
+      app.add_subcommand("modes", "natural frequencies and mode shapes (small models)");
+  modes->add_option("SCENE", modes_options.scene_path, "scene file (TOML)")->required();
+  modes->add_option("--count", modes_options.count, "lowest modes reported (default 10)")
+      ->check(CLI::PositiveNumber);
+  modes->add_flag("--static", modes_options.about_static,
+                  "about the static equilibrium under the scene's loads (default: initial state)");
+  add_static_options(modes, modes_options.statics);
+  modes
+      ->add_option("--component", component,
+                   "only the x, y or z components of every coordinate block (default all)")
+      ->check(CLI::IsMember({"all", "x", "y", "z"}));
+  modes
+      ->add_option("--amplitude", modes_options.amplitude,
+                   "largest displacement in the mode animations [m] (default: extent/10)")
+      ->check(CLI::PositiveNumber);
+  modes->add_option("--frames", modes_options.frames, "frames per period (default 24)")
+      ->check(CLI::Range(2, 10000));
+  modes->add_flag("!--no-vtk", modes_options.vtk, "no mode-shape series");
+  modes
+      ->add_option("--max-coordinates", modes_options.max_coordinates,
+                   "refuse larger models (default 3000; dense eigen-analysis)")
+      ->check(CLI::PositiveNumber);
+  modes->add_option("--out", modes_options.out_dir, "output directory (created; default: out)");
+  modes->add_flag("--quiet", modes_options.quiet, "no frequency table");
+
   CLI11_PARSE(app, argc, argv);
   if (*sweep) return ancf::app::sweep_command(sweep_options, argv[0]);
+  if (*statics) return ancf::app::static_command(static_options);
+  if (*modes) {
+    modes_options.component = component == "all" ? -1 : component[0] - 'x';
+    return ancf::app::modes_command(modes_options);
+  }
   if (*check) return ancf::app::check_command(scene, check_max_steps);
   if (*info) return ancf::app::info_command(scene);
   return ancf::app::run_command(run_options);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "ancf/io/run_limits.hpp"
+#include "scene_statics.hpp"
 
 namespace ancf::app {
 
@@ -52,5 +53,32 @@ struct SweepOptions {
   bool restart = false;  ///< discard finished cases instead of resuming
 };
 int sweep_command(const SweepOptions& options, const char* argv0);
+
+/// `ancf static SCENE …`: the static equilibrium under the scene's loads and gravity; writes
+/// probes.csv (one row), one VTK frame with its .pvd series and run.json into out_dir.
+struct StaticOptions {
+  std::string scene_path;
+  StaticSettings settings;
+  std::string out_dir = "out";
+  bool quiet = false;
+};
+int static_command(const StaticOptions& options);
+
+/// `ancf modes SCENE …`: natural frequencies (modes.csv) and mode-shape series
+/// (modes/mode_NNN.pvd) about the initial state or, with about_static, the static equilibrium.
+struct ModesOptions {
+  std::string scene_path;
+  long count = 10;            ///< lowest modes reported
+  bool about_static = false;  ///< linearise about the static equilibrium (else the initial state)
+  StaticSettings statics;     ///< its solve
+  int component = -1;      ///< −1: all; 0, 1, 2: x, y or z components only (ModalAnalysisOptions)
+  double amplitude = 0.0;  ///< [m] largest displacement in the animations; 0: extent/10
+  int frames = 24;         ///< frames per period in each mode's series
+  bool vtk = true;         ///< write the mode-shape series
+  double max_coordinates = 3000;  ///< refuse larger models (dense O(n³) eigen-analysis)
+  std::string out_dir = "out";
+  bool quiet = false;
+};
+int modes_command(const ModesOptions& options);
 
 }  // namespace ancf::app

@@ -8,7 +8,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 #include <toml++/toml.h>
 #include <numbers>
@@ -40,13 +39,6 @@ void apply_overrides(const RunOptions& o, IntegratorSettings& s) {
   if (o.error_atol > 0.0) s.ga_controller.atol = o.error_atol;
   if (o.h_min > 0.0) s.ga_controller.h_min = o.h_min;
   if (o.h_max >= 0.0) s.ga_controller.h_max = o.h_max;
-}
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 constexpr double kDeg = std::numbers::pi / 180.0;
@@ -93,7 +85,7 @@ void write_results(const std::string& file, const std::string& status, const std
 
 int run_command(const RunOptions& options) {
   Scene scene;
-  const std::string text = read_file(options.scene_path);
+  const std::string text = read_text(options.scene_path);
   try {
     std::vector<SceneOverride> overrides;
     for (const std::string& a : options.set) overrides.push_back(parse_scene_override(a));
@@ -159,7 +151,7 @@ int run_command(const RunOptions& options) {
     for (const auto& [name, value] : events) e.set(name, value);
     meta.set("capture_events", e);
   }
-  if (out) std::ofstream(options.out_dir + "/run.json") << meta.text() << '\n';
+  if (out) write_run_json(options.out_dir, meta);
   if (!options.results_file.empty())
     write_results(options.results_file, status, message, wall, out ? out->last_time() : 0.0,
                   counters, events);

@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 
+#include "ancf/physics/dot_constraint.hpp"
 #include "ancf/physics/rigid_body.hpp"
 
 namespace ancf {
@@ -24,6 +25,8 @@ std::vector<std::string> suffixes(Probe::Kind kind) {
       return {"active", "samples", "min_gap", "centreline_gap", "normal", "friction", "peak"};
     case Probe::Kind::drive:
       return {"angle", "rate", "torque"};
+    case Probe::Kind::reaction:
+      return {"fx", "fy", "fz", "mx", "my", "mz"};
   }
   return {};
 }
@@ -33,6 +36,45 @@ std::vector<std::string> suffixes(Probe::Kind kind) {
 Vec3 rotation_vector(const Mat3& a) {
   const Eigen::AngleAxisd aa(Eigen::Quaterniond(a).normalized());
   return aa.angle() * aa.axis();
+}
+
+/// Force [N] and moment [N m] that the constraints `p.constraints` exert on the probe's node or
+/// body: the generalized constraint force −Φ_qᵀλ of their rows (residual M a + … + Φ_qᵀλ),
+/// restricted to the entity's 3-blocks, read as a rigid motion's virtual work. Force: the block
+/// of the node position / body origin. Moment: δr_x = δθ × r_x (node slope) and δa_i = δθ × a_i
+/// (body axes) give M = r_x × Q_{r_x} and M = Σ a_i × Q_{a_i}, about the node and the body
+/// origin respectively (a force f at body point p̄ gives Q_{a_i} = p̄_i f, M = (r_P − r_O) × f).
+void reaction(const Model& model, const Probe& p, const SystemState& state, Workspace& ws,
+              Vec3& force, Vec3& moment) {
+  const Index first = p.on_body ? model.bodies()[p.target].first_coordinate
+                                : model.node_coordinate(p.target, p.node);
+  const int blocks = p.on_body ? 4 : 2;
+  std::array<Vec3, 4> g;
+  for (Vec3& x : g) x.setZero();
+  const auto frames = ws.frames_at(model, state.t);
+  std::array<Vec3, AffineVector::kMaxTerms> gu, gw;
+  for (const Index c : p.constraints) {
+    const ConstraintData& data = model.constraints()[c];
+    // first_row counts system rows (y = [q; λ]): multiplier r is system row n + r.
+    const Index begin = data.first_row - model.coordinate_count();
+    for (Index r = begin; r < begin + data.row_count; ++r) {
+      const DotConstraintRow& row = model.rows()[r];
+      const AffineVectorState u = evaluate(row.u, as_span(state.q), as_span(state.v), frames);
+      const AffineVectorState w = evaluate(row.w, as_span(state.q), as_span(state.v), frames);
+      gradient_blocks(row, u, w, RowGradient::phi, std::span(gu.data(), row.u.term_count),
+                      std::span(gw.data(), row.w.term_count));
+      auto add = [&](const BlockTerm& term, const Vec3& gradient) {
+        const Index offset = term.block - first;
+        if (offset >= 0 && offset < 3 * blocks && offset % 3 == 0)
+          g[offset / 3] += state.lambda[r] * gradient;
+      };
+      for (int j = 0; j < row.u.term_count; ++j) add(row.u.terms[j], gu[j]);
+      for (int j = 0; j < row.w.term_count; ++j) add(row.w.terms[j], gw[j]);
+    }
+  }
+  force = -g[0];
+  moment.setZero();
+  for (int k = 1; k < blocks; ++k) moment += state.q.segment<3>(first + 3 * k).cross(-g[k]);
 }
 
 }  // namespace
@@ -91,6 +133,13 @@ const std::vector<double>& ProbeRecorder::evaluate(const SystemState& state, Wor
         row_[k++] = d.angle;
         row_[k++] = d.rate;
         row_[k++] = d.torque;
+        break;
+      }
+      case Probe::Kind::reaction: {
+        Vec3 force, moment;
+        reaction(model_, p, state, ws, force, moment);
+        for (int d = 0; d < 3; ++d) row_[k++] = force[d];
+        for (int d = 0; d < 3; ++d) row_[k++] = moment[d];
         break;
       }
     }

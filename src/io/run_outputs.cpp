@@ -5,6 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#ifndef ANCF_VERSION
+#define ANCF_VERSION "unknown"
+#endif
 
 namespace ancf {
 
@@ -16,8 +22,9 @@ std::string prepared(const std::string& dir, bool vtk) {
   return dir;
 }
 
-/// Axis glyphs of bodies: a tenth of the extent of the initial positions (0.1 m if degenerate).
-double axis_length(const Model& model) {
+}  // namespace
+
+double tenth_of_extent(const Model& model) {
   Aabb box;
   for (const CableData& c : model.cables())
     for (Index k = 0; k < c.node_count; ++k)
@@ -28,7 +35,33 @@ double axis_length(const Model& model) {
   return std::isfinite(extent) && extent > 0.0 ? 0.1 * extent : 0.1;
 }
 
-}  // namespace
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+JsonObject run_json_header(const Scene& scene, const std::string& scene_text,
+                           const std::string& command, const std::string& status,
+                           const std::string& message, double wall_seconds) {
+  JsonObject meta;
+  meta.set("ancf_version", ANCF_VERSION)
+      .set("command", command)
+      .set("scene", scene.path)
+      .set("scene_name", scene.name)
+      .set("scene_fnv1a64", fmt::format("{:016x}", fnv1a64(scene_text)))
+      .set("status", status)
+      .set("message", message)
+      .set("wall_time_s", wall_seconds);
+  return meta;
+}
+
+void write_run_json(const std::string& dir, const JsonObject& json) {
+  std::ofstream out(dir + "/run.json");
+  out << json.text() << '\n';
+  if (!out) throw ModelError("cannot write " + dir + "/run.json");
+}
 
 RunOutputs::RunOutputs(const Scene& scene, const std::string& dir)
     : scene_(scene),
@@ -36,7 +69,7 @@ RunOutputs::RunOutputs(const Scene& scene, const std::string& dir)
       ws_(scene.model),
       recorder_(scene.model, scene.output.probes),
       csv_(dir_ + "/probes.csv", recorder_.columns()),
-      axis_length_(axis_length(scene.model)) {
+      axis_length_(tenth_of_extent(scene.model)) {
   if (scene.output.vtk) pvd_.emplace(dir_ + "/" + scene.name + ".pvd");
 }
 

@@ -1,7 +1,7 @@
 // run.json (run_record.hpp): one writer for `ancf run` and the Python module.
 #include "ancf/io/run_record.hpp"
 
-#include <fmt/format.h>
+#include "ancf/io/run_outputs.hpp"
 
 #ifndef ANCF_VERSION
 #define ANCF_VERSION "unknown"
@@ -16,7 +16,7 @@ const char* ancf_version() {
 JsonObject run_json(const Scene& scene, const RunRecord& record, const RunOutputs* out) {
   const IntegratorSettings& s = scene.integrator;
   const bool ida = s.kind == IntegratorKind::ida;
-  JsonObject opts, counts, results, meta, times;
+  JsonObject opts, counts, results, times;
   opts.set("integrator", ida ? "ida" : "genalpha").set("rtol", s.rtol).set("t_end", s.t_end);
   opts.set("contact_pattern", s.contact_pattern == ContactPatternPolicy::all ? "all" : "near");
   opts.set("cable_tangent",
@@ -44,17 +44,9 @@ JsonObject run_json(const Scene& scene, const RunRecord& record, const RunOutput
         .set("max_energy_change", out->max_energy_change())
         .set("max_position_violation", out->max_position_violation())
         .set("max_velocity_violation", out->max_velocity_violation());
-  meta.set("ancf_version", ANCF_VERSION)
-      .set("scene", record.scene_path)
-      .set("scene_name", scene.name)
-      .set("scene_fnv1a64", fmt::format("{:016x}", fnv1a64(record.scene_text)))
-      .set("status", record.status)
-      .set("message", record.message)
-      .set("wall_time_s", record.wall_seconds)
-      .set("options", opts)
-      .set("counters", counts)
-      .set("time_s", times)
-      .set("results", results);
+  JsonObject meta = run_json_header(scene, record.scene_text, "run", record.status,
+                                    record.message, record.wall_seconds);
+  meta.set("options", opts).set("counters", counts).set("time_s", times).set("results", results);
   return meta;
 }
 

@@ -21,13 +21,11 @@ CableGeometry polyline_cable(TableReader& g, const std::vector<Vec3>& p, Index e
     g.fail("points", "a polyline of " + std::to_string(segments) +
                          " segments needs elements >= " + std::to_string(segments));
   std::vector<double> length(segments);
-  double total = 0.0;
   for (std::size_t s = 0; s < segments; ++s) {
     length[s] = (p[s + 1] - p[s]).norm();
     if (!(length[s] > 0.0))
       g.fail("points", "points " + std::to_string(s) + " and " + std::to_string(s + 1) +
                            " coincide (zero-length segment)");
-    total += length[s];
   }
   // One element per segment, then the rest by largest remaining length per element.
   std::vector<Index> count(segments, 1);

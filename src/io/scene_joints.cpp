@@ -9,6 +9,7 @@ namespace {
 void read_node_joint(TableReader& t, SceneBuild& b, const std::string& kind,
                      const std::string& name) {
   const NodeRef node = b.node(t, "at");
+  b.joint_targets[name] = {false, node.cable, node.node};
   const NodeCoordinates& x0 = b.cable_initial[node.cable].nodes[node.node];
   const std::string slope_name = name + ".slope";
   if (kind == "pin" || kind == "clamp") {
@@ -52,6 +53,7 @@ void read_node_joint(TableReader& t, SceneBuild& b, const std::string& kind,
 void read_body_joint(TableReader& t, SceneBuild& b, const std::string& kind,
                      const std::string& name) {
   const Index body = b.body(t, "body");
+  b.joint_targets[name] = {true, body, 0};
   if (t.has("to") && b.names.frames.count(t.string("to")))
     t.fail("to", "body joints connect a body to ground or to another body, not to a driven frame");
   const Index other = b.body_or_ground(t, "to");

@@ -30,6 +30,13 @@ struct SceneBuild {
   };
   std::map<std::string, Origin> origins;
   std::map<std::string, std::string> revolute_joints;  // name → path (drives refer to them)
+  /// What each [[joint]] acts on (its `at` node or its `body`): the entity of its reaction probe.
+  struct JointTarget {
+    bool on_body = false;
+    Index index = 0;  // cable (node joints) or body
+    Index node = 0;
+  };
+  std::map<std::string, JointTarget> joint_targets;
 
   /// Record `name` (constraint, force element, contact pair or drive) as declared by `t`; fails
   /// if the name is already used by another of them.

@@ -97,8 +97,8 @@ OutputSettings read_output(TableReader& root, SceneBuild& b) {
   };
   for (TableReader& p : t.tables("probe")) {
     Probe probe;
-    const std::string kind =
-        p.choice("kind", {"node", "body", "energy", "constraint_violation", "contact", "drive"});
+    const std::string kind = p.choice(
+        "kind", {"node", "body", "energy", "constraint_violation", "contact", "drive", "reaction"});
     std::string label = kind;
     if (kind == "node") {
       probe.kind = Probe::Kind::node;
@@ -117,6 +117,15 @@ OutputSettings read_output(TableReader& root, SceneBuild& b) {
     } else if (kind == "contact") {
       probe.kind = Probe::Kind::contact;
       std::tie(label, probe.target) = lookup(p, "pair", b.names.contacts, "contact pair");
+    } else if (kind == "reaction") {
+      probe.kind = Probe::Kind::reaction;
+      probe.joint = p.string("joint");
+      const auto it = b.joint_targets.find(probe.joint);
+      if (it == b.joint_targets.end()) p.fail("joint", "no [[joint]] named '" + probe.joint + "'");
+      probe.on_body = it->second.on_body;
+      probe.target = it->second.index;
+      probe.node = it->second.node;
+      label = probe.joint;
     } else {
       probe.kind = Probe::Kind::drive;
       std::tie(label, probe.target) = lookup(p, "drive", b.names.drives, "drive");

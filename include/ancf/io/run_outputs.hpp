@@ -1,5 +1,6 @@
-// Everything `ancf run` writes per output frame (probes.csv row, .vtp frame, .pvd series) and the
-// run-wide measures of the summary (energy drift, largest constraint violation).
+// Everything `ancf run` and `ancf static` write per output frame (probes.csv row, .vtp frame, .pvd
+// series), the run-wide measures of the summary (energy drift, largest constraint violation), and
+// the run.json header that `run`, `static` and `modes` share.
 #pragma once
 
 #include <memory>
@@ -7,10 +8,27 @@
 #include <string>
 
 #include "ancf/io/probe_recorder.hpp"
+#include "ancf/io/run_metadata.hpp"
 #include "ancf/io/scene.hpp"
 #include "ancf/io/vtk_writer.hpp"
 
 namespace ancf {
+
+/// The bytes of `path` ("" if it cannot be read: load_scene reports that).
+[[nodiscard]] std::string read_text(const std::string& path);
+
+/// A tenth of the extent of the model's initial positions (cable nodes, body origins) [m], 0.1 m
+/// if degenerate: the body-axis glyph length and the mode-shape amplitude.
+[[nodiscard]] double tenth_of_extent(const Model& model);
+
+/// The members every run.json starts with: ancf_version, command ("run", "static", "modes"),
+/// scene (path as given), scene_name, scene_fnv1a64 (hash of `scene_text`), status, message,
+/// wall_time_s. The command adds its options, counters and results.
+[[nodiscard]] JsonObject run_json_header(const Scene& scene, const std::string& scene_text,
+                                         const std::string& command, const std::string& status,
+                                         const std::string& message, double wall_seconds);
+/// Write `json` to dir/run.json. Throws ModelError if it cannot be written.
+void write_run_json(const std::string& dir, const JsonObject& json);
 
 class RunOutputs {
  public:

@@ -57,11 +57,17 @@ struct IntegratorSettings {
 
 /// One probe of the output time series (probes.csv columns, docs/scenes.md).
 struct Probe {
-  enum class Kind { node, body, energy, constraint_violation, contact, drive };
+  enum class Kind { node, body, energy, constraint_violation, contact, drive, reaction };
   Kind kind = Kind::energy;
   std::string label;  ///< column prefix
   Index target = -1;  ///< cable (node), body, contact pair or drive index; unused otherwise
-  Index node = 0;     ///< node index (≥ 0, resolved) for Kind::node
+  Index node = 0;     ///< node index (≥ 0, resolved) for Kind::node and a node's reaction
+  /// Kind::reaction: the joint's name; it acts on node `node` of cable `target`, or on body
+  /// `target` (on_body); its constraints (Model::constraints() indices: the joint's own and,
+  /// for clamp / slope options, NAME.slope), resolved when the model is finalized.
+  std::string joint;
+  bool on_body = false;
+  std::vector<Index> constraints;
 };
 
 struct OutputSettings {
