@@ -60,11 +60,14 @@ void set_counters(benchmark::State& state, const KluSetup& s, Index elements) {
       benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
-// Refactorization with the pivot order of the first factorization (klu_refactor + the pivot
-// growth check KluSolver does after it).
+// Refactorization with the pivot order of the first factorization (klu_refactor + the check
+// KluSolver does after it): Arg 1 = RefactorCheck::pivot_growth (klu_rgrowth, the default of
+// KluSolver), Arg 0 = RefactorCheck::diagonal (the O(n) rcond estimate, generalized-α's default).
 void BM_KluRefactor(benchmark::State& state) {
   const Index elements = state.range(0);
   KluSetup s(elements);
+  s.klu.set_refactor_check(state.range(1) != 0 ? ancf::RefactorCheck::pivot_growth
+                                               : ancf::RefactorCheck::diagonal);
   const int full_before = s.klu.full_factorizations();
   for (auto _ : state) {
     s.klu.factor(ancf::as_span(s.values));
@@ -106,7 +109,9 @@ void BM_KluSolve(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(BM_KluRefactor)->Arg(20)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_KluRefactor)
+    ->ArgsProduct({{20, 100, 1000, 10000}, {1, 0}})
+    ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_KluFactorPivoting)
     ->Arg(20)
     ->Arg(100)
