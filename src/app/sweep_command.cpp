@@ -132,7 +132,7 @@ void run_local(const SweepContext& ctx, const std::vector<long>& todo, long work
 }  // namespace
 
 int sweep_command(const SweepOptions& options, const char* argv0) {
-  const bool mpi = options.mpi || launched_by_mpi();
+  bool mpi = options.mpi || launched_by_mpi();
   int rank = 0, ranks = 1;
   try {
     if (mpi) std::tie(rank, ranks) = mpi_begin();
@@ -187,6 +187,12 @@ int sweep_command(const SweepOptions& options, const char* argv0) {
     return 0;
   }
 
+  if (mpi && ranks < 2) {
+    // One rank (`mpirun -n 1`, or --mpi without a launcher): nobody to hand cases to.
+    fmt::print("one MPI rank: running the cases in worker processes instead\n");
+    mpi_end();
+    mpi = false;
+  }
   const long workers =
       mpi ? ranks - 1 : (options.workers > 0 ? options.workers : default_workers());
   fmt::print("sweep {}: {} cases, {} already finished, {} to run on {} {}\n", options.sweep_path,
@@ -206,8 +212,6 @@ int sweep_command(const SweepOptions& options, const char* argv0) {
       std::fflush(stdout);
     };
     if (mpi) {
-      if (ranks < 2)
-        throw std::runtime_error("MPI mode needs at least 2 ranks (rank 0 hands out the cases)");
       mpi_dispatch(todo, on_row);
     } else {
       run_local(ctx, todo, workers, on_row);

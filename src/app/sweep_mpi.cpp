@@ -14,10 +14,10 @@ namespace ancf::app {
 bool launched_by_mpi() {
   for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE", "MPI_LOCALNRANKS"})
     if (const char* s = std::getenv(v); s && std::atoi(s) > 1) return true;
-  // srun without an MPI plug-in still sets SLURM_NTASKS and SLURM_PROCID for every task.
-  const char* tasks = std::getenv("SLURM_NTASKS");
-  return tasks && std::atoi(tasks) > 1 && std::getenv("SLURM_PROCID") &&
-         std::getenv("SLURM_STEP_ID");
+  // srun sets SLURM_STEP_NUM_TASKS for the tasks it starts (a batch script itself has none), also
+  // without an MPI plug-in: then each task would otherwise run the whole sweep.
+  const char* tasks = std::getenv("SLURM_STEP_NUM_TASKS");
+  return tasks && std::atoi(tasks) > 1 && std::getenv("SLURM_PROCID");
 }
 
 #ifdef ANCF_HAVE_MPI
