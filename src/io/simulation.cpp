@@ -29,6 +29,7 @@ void run_ida(const Model& model, const IntegratorSettings& s, const std::vector<
   o.stop_time = s.t_end;
   IdaIntegrator ida(problem, o);
   SystemState state = SystemState::initial(model);
+  state.rod_history = &problem.workspace().rods;
   problem.unpack(0.0, ida.y(), ida.yp(), state);  // consistent initial values
   if (hooks.output) hooks.output(state);
   auto counters = [&] {
@@ -96,6 +97,7 @@ void run_genalpha(const Model& model, const IntegratorSettings& s, const std::ve
   o.filter_error_estimate = s.ga_filter_error_estimate;
   GeneralizedAlphaStepper ga(problem, o);
   SystemState state = SystemState::initial(model);
+  state.rod_history = &problem.workspace().rods;
   auto snapshot = [&] {
     state.t = ga.time();
     state.q = ga.positions();

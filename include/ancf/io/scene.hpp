@@ -54,11 +54,11 @@ struct IntegratorSettings {
 
 /// One probe of the output time series (probes.csv columns, docs/scenes.md).
 struct Probe {
-  enum class Kind { node, body, energy, constraint_violation, contact, drive };
+  enum class Kind { node, body, energy, constraint_violation, contact, drive, rod };
   Kind kind = Kind::energy;
   std::string label;  ///< column prefix
   Index target = -1;  ///< cable (node), body, contact pair or drive index; unused otherwise
-  Index node = 0;     ///< node index (≥ 0, resolved) for Kind::node
+  Index node = 0;     ///< node index (≥ 0, resolved) for Kind::node and Kind::rod
 };
 
 struct OutputSettings {
