@@ -44,13 +44,26 @@ int info_command(const std::string& scene_path) {
           every.pattern().nonzeros(),
           100.0 * static_cast<double>(every.pattern().nonzeros()) / dense);
     fmt::print("cables       {}\n", m.cables().size());
-    for (const CableData& c : m.cables())
+    for (const CableData& c : m.cables()) {
+      if (c.rod) {
+        const RodSection& r = c.rod->section;
+        fmt::print(
+            "  {:<18} {:>4} elements {:>4} nodes  Kirchhoff rod (twist coordinates {}..{}): EA "
+            "{:.4g} N  GJ {:.4g} N m^2  EI2 {:.4g}  EI3 {:.4g} N m^2  rhoA {:.4g} kg/m  rhoJ "
+            "{:.4g} kg m  Gauss {}\n",
+            c.name, c.elements.size(), c.node_count, c.rod->twist_first,
+            c.rod->twist_first + c.node_count - 1, r.axial_stiffness, r.torsional_stiffness,
+            r.bending_stiffness_2, r.bending_stiffness_3, r.mass_per_length, r.polar_inertia,
+            kRodGaussPoints);
+        continue;
+      }
       fmt::print(
           "  {:<18} {:>4} elements {:>4} nodes  EA {:.4g} N  EI {:.4g} N m^2  rhoA {:.4g} kg/m  "
           "Gauss {}/{}\n",
           c.name, c.elements.size(), c.node_count, c.section.axial_stiffness,
           c.section.bending_stiffness, c.section.mass_per_length, c.section.quadrature.axial,
           c.section.quadrature.bending);
+    }
     fmt::print("bodies       {}\n", m.bodies().size());
     for (const BodyData& b : m.bodies())
       fmt::print("  {:<18} mass {:.4g} kg\n", b.name, b.inertia.mass);
@@ -61,6 +74,7 @@ int info_command(const std::string& scene_path) {
     fmt::print("forces       {} spring-dampers, {} point forces, {} torques, {} drives\n",
                m.spring_dampers().size(), m.point_forces().size(), m.body_torques().size(),
                m.drives().size());
+    if (!m.rod_moments().empty()) fmt::print("rod moments  {}\n", m.rod_moments().size());
     fmt::print("contact      {} pairs, {} shapes\n", m.contact_pair_count(), m.shapes().size());
     for (const CableShapeContactData& p : m.cable_shape_contacts())
       fmt::print("  {:<18} cable '{}' - shape '{}', elements {}..{}, {} samples/element\n", p.name,

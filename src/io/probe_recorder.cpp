@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 
 #include "ancf/physics/dot_constraint.hpp"
 #include "ancf/physics/rigid_body.hpp"
@@ -27,6 +28,8 @@ std::vector<std::string> suffixes(Probe::Kind kind) {
       return {"angle", "rate", "torque"};
     case Probe::Kind::reaction:
       return {"fx", "fy", "fz", "mx", "my", "mz"};
+    case Probe::Kind::rod:
+      return {"twist", "torque", "K2", "K3"};
   }
   return {};
 }
@@ -125,6 +128,27 @@ const std::vector<double>& ProbeRecorder::evaluate(const SystemState& state, Wor
                          c.min_centreline_gap, c.normal_force.norm(), c.friction_force.norm(),
                          c.peak_sample_force})
           row_[k++] = x;
+        break;
+      }
+      case Probe::Kind::rod: {
+        // Twist angle α of the node; torque GJ(K₁ − K₁⁰) and the curvatures K₂, K₃ at the middle
+        // of the element starting at the node (the last node: the element ending there).
+        const CableData& c = model_.cables()[p.target];
+        const RodHistory& h = state.rod_history ? *state.rod_history : ws.rods;
+        const Index j = std::min<Index>(p.node, c.node_count - 2);
+        const RodPointState now =
+            rod_point_state(c.rod->elements[j], h.element(p.target, j),
+                            rod_element_coordinates(c, j, as_span(state.q)), 0.5);
+        Vec14 e0 = Vec14::Zero();
+        e0.head<12>() = c.rod->elements[j].e0;
+        const RodPointState ref = rod_point_state(
+            c.rod->elements[j],
+            {c.rod->reference_frames[j], c.rod->reference_frames[j + 1], c.rod->reference_omega[j]},
+            e0, 0.5);
+        row_[k++] = state.q[c.rod->twist_first + p.node];
+        row_[k++] = c.rod->section.torsional_stiffness * (now.curvature[0] - ref.curvature[0]);
+        row_[k++] = now.curvature[1];
+        row_[k++] = now.curvature[2];
         break;
       }
       case Probe::Kind::drive: {

@@ -65,7 +65,9 @@ void require_perpendicular(TableReader& g, std::string_view key, const Vec3& a, 
     g.fail(key, std::string("expected a direction perpendicular to ") + other);
 }
 
-CableGeometry read_geometry(TableReader g, Index elements) {
+}  // namespace
+
+CableGeometry read_geometry(TableReader g, Index elements, GeometryAxis* axis_out) {
   const std::string kind = g.choice("kind", {"straight", "polyline", "helix", "arc"});
   CableGeometry geo;
   if (kind == "straight") {
@@ -88,6 +90,7 @@ CableGeometry read_geometry(TableReader g, Index elements) {
     if (!(std::hypot(radius * twist, rise) > 0.0))
       g.fail("twist", "expected twist or rise non-zero (zero length)");
     geo = helix_cable(base, axis, u, radius, phi0, twist, rise, elements);
+    if (axis_out) *axis_out = {true, base, axis};
   } else {
     const Vec3 centre = g.vec3_or("centre", Vec3::Zero());
     const Vec3 u = g.direction("u"), w = g.direction("w");
@@ -95,10 +98,13 @@ CableGeometry read_geometry(TableReader g, Index elements) {
     const double radius = g.number("radius", Range::positive), angle = g.number("angle");
     if (angle == 0.0) g.fail("angle", "expected a non-zero angle [rad] (zero length)");
     geo = arc_cable(centre, u, w, radius, angle, elements);
+    if (axis_out) *axis_out = {true, centre, u.cross(w)};
   }
   g.finish();
   return geo;
 }
+
+namespace {
 
 CableSection read_section(TableReader s) {
   CableSection c;
@@ -193,6 +199,7 @@ void read_cables(TableReader& root, SceneBuild& b) {
       b.cable_initial.push_back(initial);
       b.cable_radius.push_back(section.radius);
       b.cable_names.push_back(name);
+      b.cable_is_rod.push_back(0);
     });
   }
 }

@@ -21,6 +21,19 @@ void read_node_joint(TableReader& t, SceneBuild& b, const std::string& kind,
     if (kind == "clamp") b.declare(t, "name", slope_name);
     b.build(t, [&] { b.builder.align_slope(kind == "clamp" ? slope_name : name, node, d); });
   }
+  const bool rod = b.cable_is_rod[node.cable] != 0;
+  // A rod's clamp also fixes its twist (the material triad), unless twist = false.
+  if (kind == "clamp" && rod && t.boolean_or("twist", true)) {
+    b.declare(t, "name", name + ".twist");
+    b.build(t, [&] { b.builder.fix_twist(name + ".twist", node); });
+  }
+  if (kind == "fix_twist") {
+    if (!rod) t.fail("at", "fix_twist needs a node of a [[rod]] (a cable has no twist)");
+    b.build(t, [&] { b.builder.fix_twist(name, node); });
+  }
+  if (kind == "attach" && t.has("twist"))
+    t.fail("twist",
+           "a rod's twist cannot be tied to a body or frame yet (docs/rod.md, \"Not available\")");
   if (kind == "attach") {
     const std::string to = t.string("to");
     const bool slope = t.boolean_or("slope", false);
@@ -46,7 +59,14 @@ void read_node_joint(TableReader& t, SceneBuild& b, const std::string& kind,
     const bool slopes = t.boolean_or("slopes", false);
     if (other.cable == node.cable && other.node == node.node)
       t.fail("other", "expected a different node than 'at'");
-    b.build(t, [&] { b.builder.join_nodes(name, node, other, slopes); });
+    const bool rods = rod && b.cable_is_rod[other.cable] != 0;
+    const bool twist = t.boolean_or("twist", rods && slopes);
+    if (twist && !rods) t.fail("twist", "twist = true needs two nodes of [[rod]]s");
+    if (twist) b.declare(t, "name", name + ".twist");
+    b.build(t, [&] {
+      b.builder.join_nodes(name, node, other, slopes);
+      if (twist) b.builder.join_twist(name + ".twist", node, other);
+    });
   }
 }
 
@@ -82,8 +102,8 @@ void read_body_joint(TableReader& t, SceneBuild& b, const std::string& kind,
 
 void read_joints(TableReader& root, SceneBuild& b) {
   for (TableReader& t : root.tables("joint")) {
-    const std::string kind = t.choice("kind", {"pin", "align_slope", "clamp", "attach", "join",
-                                               "spherical", "revolute", "fixed"});
+    const std::string kind = t.choice("kind", {"pin", "align_slope", "clamp", "fix_twist", "attach",
+                                               "join", "spherical", "revolute", "fixed"});
     const std::string name = t.string_or("name", t.path());
     b.declare(t, "name", name);
     if (kind == "spherical" || kind == "revolute" || kind == "fixed")
@@ -115,7 +135,7 @@ void read_drives(TableReader& root, SceneBuild& b) {
 
 void read_loads(TableReader& root, SceneBuild& b) {
   for (TableReader& t : root.tables("load")) {
-    const std::string kind = t.choice("kind", {"force", "torque", "spring"});
+    const std::string kind = t.choice("kind", {"force", "torque", "moment", "spring"});
     const std::string name = t.string_or("name", t.path());
     b.declare(t, "name", name);
     if (kind == "force") {
@@ -129,6 +149,12 @@ void read_loads(TableReader& root, SceneBuild& b) {
         else
           b.builder.add_point_force(name, at, force);
       });
+    } else if (kind == "moment") {
+      const NodeRef node = b.node(t, "at");
+      if (!b.cable_is_rod[node.cable])
+        t.fail("at", "a moment acts on a node of a [[rod]] (a cable node has no rotation)");
+      const Vec3 moment = t.vec3("moment");
+      b.build(t, [&] { b.builder.add_node_moment(node, moment); });
     } else if (kind == "torque") {
       const Index body = b.body(t, "body");
       const Vec3 torque = t.vec3("torque");

@@ -38,6 +38,7 @@ Scene build_scene(const toml::table& root_table, const std::string& path,
     meta->finish();
   }
   io::read_cables(root, b);
+  io::read_rods(root, b);
   io::read_bodies(root, b);
   io::read_frames(root, b);
   io::read_shapes(root, b);

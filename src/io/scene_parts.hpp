@@ -22,6 +22,7 @@ struct SceneBuild {
   std::vector<CableGeometry> cable_initial;  // initial configuration per cable (defaults of pins)
   std::vector<double> cable_radius;          // section radius per cable [m]
   std::vector<std::string> cable_names;
+  std::vector<char> cable_is_rod;  // per cable: a [[rod]] (twist coordinates) or a [[cable]]
   /// Where each named constraint / force / pair was declared (key path and line), so that
   /// errors found later (redundancy at finalize) point back into the file.
   struct Origin {
@@ -70,7 +71,17 @@ Mat3 read_rotation(TableReader& t, std::string_view key);
 /// { kind = "fixed" | "constant_rate" | "smooth_ramp", angle0, rate, max_rate, ramp_time }.
 AngleLaw read_angle_law(TableReader& t, std::string_view key);
 
+/// The axis of a helix or arc geometry (through `point` along `direction`), for rod frames.
+struct GeometryAxis {
+  bool valid = false;
+  Vec3 point = Vec3::Zero(), direction = Vec3::UnitZ();
+};
+/// A `geometry`/`reference` table (docs/scenes.md) with `elements` elements; `axis` (optional)
+/// receives the axis of a helix or arc.
+CableGeometry read_geometry(TableReader g, Index elements, GeometryAxis* axis = nullptr);
 void read_cables(TableReader& root, SceneBuild& b);
+/// [[rod]]: Kirchhoff rods (scene_rods.cpp).
+void read_rods(TableReader& root, SceneBuild& b);
 void read_bodies(TableReader& root, SceneBuild& b);
 void read_frames(TableReader& root, SceneBuild& b);
 void read_joints(TableReader& root, SceneBuild& b);

@@ -98,7 +98,8 @@ OutputSettings read_output(TableReader& root, SceneBuild& b) {
   for (TableReader& p : t.tables("probe")) {
     Probe probe;
     const std::string kind = p.choice(
-        "kind", {"node", "body", "energy", "constraint_violation", "contact", "drive", "reaction"});
+        "kind", {"node", "body", "energy", "constraint_violation", "contact", "drive", "reaction",
+                 "rod"});
     std::string label = kind;
     if (kind == "node") {
       probe.kind = Probe::Kind::node;
@@ -106,6 +107,13 @@ OutputSettings read_output(TableReader& root, SceneBuild& b) {
       probe.target = n.cable;
       probe.node = n.node;
       label = b.cable_names[n.cable] + "[" + std::to_string(n.node) + "]";
+    } else if (kind == "rod") {
+      probe.kind = Probe::Kind::rod;
+      const NodeRef n = b.node(p, "at");
+      if (!b.cable_is_rod[n.cable]) p.fail("at", "a rod probe needs a node of a [[rod]]");
+      probe.target = n.cable;
+      probe.node = n.node;
+      label = b.cable_names[n.cable] + "[" + std::to_string(n.node) + "].rod";
     } else if (kind == "body") {
       probe.kind = Probe::Kind::body;
       std::tie(label, probe.target) = lookup(p, "body", b.names.bodies, "body");

@@ -34,6 +34,7 @@ class IdaBackend final : public Simulation::Backend {
         // The cable tangent is chosen before IDA computes consistent initial values with it.
         ida_((problem_.set_cable_tangent(s.cable_tangent), problem_), options(s, times)),
         state_(SystemState::initial(model)) {
+    state_.rod_history = &problem_.workspace().rods;
     problem_.unpack(0.0, ida_.y(), ida_.yp(), state_);  // consistent initial values
   }
 
@@ -132,6 +133,7 @@ class GeneralizedAlphaBackend final : public Simulation::Backend {
       : problem_(model, ContactPatternOptions{.policy = s.contact_pattern}),
         ga_((problem_.set_cable_tangent(s.cable_tangent), problem_), options(s)),
         state_(SystemState::initial(model)) {
+    state_.rod_history = &problem_.workspace().rods;
     ga_.initialize(0.0);
     snapshot();
   }

@@ -417,7 +417,7 @@ void assemble_acceleration_rhs(const Model& model, const SystemState& state, Wor
 Energies energies(const Model& model, const SystemState& state, Workspace& ws) {
   Energies e;
   e.kinetic = kinetic_energy(model, state.v);
-  e.strain = strain_energy(model, state.q, ws.rods);
+  e.strain = strain_energy(model, state.q, state.rod_history ? *state.rod_history : ws.rods);
   const auto frames = ws.frames_at(model, state.t);
   for (const auto& f : model.spring_dampers())
     e.spring += potential_energy(f.element, as_span(state.q), frames);

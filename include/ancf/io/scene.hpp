@@ -57,11 +57,11 @@ struct IntegratorSettings {
 
 /// One probe of the output time series (probes.csv columns, docs/scenes.md).
 struct Probe {
-  enum class Kind { node, body, energy, constraint_violation, contact, drive, reaction };
+  enum class Kind { node, body, energy, constraint_violation, contact, drive, reaction, rod };
   Kind kind = Kind::energy;
   std::string label;  ///< column prefix
   Index target = -1;  ///< cable (node), body, contact pair or drive index; unused otherwise
-  Index node = 0;     ///< node index (≥ 0, resolved) for Kind::node and a node's reaction
+  Index node = 0;     ///< node index (≥ 0, resolved) for Kind::node, Kind::rod and a node's reaction
   /// Kind::reaction: the joint's name; it acts on node `node` of cable `target`, or on body
   /// `target` (on_body); its constraints (Model::constraints() indices: the joint's own and,
   /// for clamp / slope options, NAME.slope), resolved when the model is finalized.

@@ -14,13 +14,17 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <type_traits>
 
 namespace ancf {
 
 template <int N, bool kSecond = true>
 struct Jet {
   using Grad = Eigen::Matrix<double, N, 1>;
-  using Hess = Eigen::Matrix<double, N, N>;
+  // Without second derivatives the Hessian slot is a 1×1 placeholder, so that a first-order jet
+  // is not copied with 8N² dead bytes on every operation (measured: ~3× on the rod's force).
+  using Hess =
+      std::conditional_t<kSecond, Eigen::Matrix<double, N, N>, Eigen::Matrix<double, 1, 1>>;
   double v = 0.0;
   Grad g = Grad::Zero();
   Hess h;  // valid only if kSecond (left uninitialised otherwise)

@@ -20,6 +20,9 @@ class ContactPattern;
 struct SystemState {
   double t = 0.0;
   VecX q, v, a, lambda;
+  /// The rod history the twist coordinates of q refer to (rod_history.hpp), for evaluations
+  /// outside the integrator (outputs); nullptr: the Workspace's own.
+  const RodHistory* rod_history = nullptr;
 
   /// State at t = 0 with q, v from the model's initial values, a = 0, λ = 0.
   static SystemState initial(const Model& model);
