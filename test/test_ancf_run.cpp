@@ -3,6 +3,8 @@
 // series and its frames; a malformed scene exits 1 without starting.
 #include <gtest/gtest.h>
 
+#include "ancf_command.hpp"
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -14,13 +16,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kSource = ANCF_SOURCE_DIR;
+using ancf::testing::kSource;
 
-int run(const std::string& args) {
-  const std::string command = std::string(ANCF_EXECUTABLE) + " " + args + " > /dev/null 2>&1";
-  const int status = std::system(command.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
+int run(const std::string& args) { return ancf::testing::run_ancf(args); }
 
 std::vector<std::string> lines(const fs::path& file) {
   std::ifstream in(file);

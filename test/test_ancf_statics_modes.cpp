@@ -4,6 +4,8 @@
 // modes.csv (17 significant digits).
 #include <gtest/gtest.h>
 
+#include "ancf_command.hpp"
+
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -18,13 +20,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kSource = ANCF_SOURCE_DIR;
+using ancf::testing::kSource;
 
-int run(const std::string& args) {
-  const std::string command = std::string(ANCF_EXECUTABLE) + " " + args + " > /dev/null 2>&1";
-  const int status = std::system(command.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
+int run(const std::string& args) { return ancf::testing::run_ancf(args); }
 
 std::string text(const fs::path& file) {
   std::ifstream in(file);
