@@ -18,7 +18,9 @@ namespace {
 
 using ancf::testing::kSource;
 
-int run(const std::string& args) { return ancf::testing::run_ancf(args); }
+int run(const std::string& args) {
+  return ancf::testing::run_ancf(args);
+}
 
 std::vector<std::string> lines(const fs::path& file) {
   std::ifstream in(file);

@@ -22,7 +22,9 @@ namespace {
 
 using ancf::testing::kSource;
 
-int run(const std::string& args) { return ancf::testing::run_ancf(args); }
+int run(const std::string& args) {
+  return ancf::testing::run_ancf(args);
+}
 
 std::string text(const fs::path& file) {
   std::ifstream in(file);
