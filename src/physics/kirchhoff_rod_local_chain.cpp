@@ -20,29 +20,128 @@ namespace ancf::rod_detail {
 namespace {
 
 constexpr int kLocal = 11;
-constexpr int kA = 0, kB = 3, kT1 = 6, kAlpha1 = 9, kZeta = 10;  // offsets in y
+constexpr int kB = 0, kA = 3, kT1 = 6, kAlpha1 = 9, kZeta = 10;  // offsets in y
 using LocalVec = Eigen::Matrix<double, kLocal, 1>;
 using LocalMat = Eigen::Matrix<double, kLocal, kLocal>;
 using LocalMap = Eigen::Matrix<double, kLocal, 14>;  // B = ∂y/∂e
 // Element coordinates of (t₁, t₂), the variables of ω's jets.
 constexpr std::array<int, 6> kTangents{3, 4, 5, 9, 10, 11};
 
-// A jet in (t₁, t₂) that depends on t₁ only, as a jet in y.
+// A jet in N variables as one in M ⊇ them, its variables at [offset, offset + N).
+template <int M, int N, bool S>
+Jet<M, S> promote(const Jet<N, S>& x, int offset) {
+  Jet<M, S> y(x.v);
+  y.g.template segment<N>(offset) = x.g;
+  if constexpr (S) y.h.template block<N, N>(offset, offset) = x.h;
+  return y;
+}
+template <int M, int N, bool S>
+V3<Jet<M, S>> promote(const V3<Jet<N, S>>& v, int offset) {
+  return {promote<M>(v.x, offset), promote<M>(v.y, offset), promote<M>(v.z, offset)};
+}
+
+// A jet in (t₁, t₂) that depends on t₁ only, as a jet in t₁.
 template <bool S>
-Jet<kLocal, S> embed_t1(const Jet<6, S>& x) {
-  Jet<kLocal, S> y(x.v);
-  y.g.template segment<3>(kT1) = x.g.template head<3>();
-  if constexpr (S) y.h.template block<3, 3>(kT1, kT1) = x.h.template topLeftCorner<3, 3>();
+Jet<3, S> t1_part(const Jet<6, S>& x) {
+  Jet<3, S> y(x.v);
+  y.g = x.g.template head<3>();
+  if constexpr (S) y.h = x.h.template topLeftCorner<3, 3>();
   return y;
 }
 template <bool S>
-V3<Jet<kLocal, S>> embed_t1(const V3<Jet<6, S>>& v) {
-  return {embed_t1(v.x), embed_t1(v.y), embed_t1(v.z)};
+V3<Jet<3, S>> t1_part(const V3<Jet<6, S>>& v) {
+  return {t1_part(v.x), t1_part(v.y), t1_part(v.z)};
 }
 
 template <class J>
 V3<J> variables(const V3<double>& v, int first) {
   return {J::variable(v.x, first), J::variable(v.y, first + 1), J::variable(v.z, first + 2)};
+}
+
+// Node 1's untwisted frame (t̂₁, d₂, d₃ of SR(R₁ → t̂₁)) as jets in t₁.
+template <bool S>
+struct NodeFrame {
+  V3<Jet<3, S>> t1, n2, n3;
+};
+
+// The strains (ε, K₁, K₂, K₃) at a point as jets in y = (b, a, t₁, α₁, ζ). The operations and
+// their order are those of point_strains (kirchhoff_rod_strains.hpp), so the values are bitwise
+// equal; each intermediate is carried as a jet in only the variables it depends on:
+//   |a|, g = a/|a|: a (3);  κ = a × b/|a|²: (b, a) (6);  1/(1 + t̂₁·g), SR columns: (a, t₁) (6);
+//   κ·d₂, κ·d₃, (t̂₁·κ)/(1 + t̂₁·g): (b, a, t₁) (9).
+// The twist ψ = (1 − ξ)α₁ + ξζ enters through cos ψ, sin ψ, differentiated here by hand:
+//   K₂ = (c k₂ + s k₃)/J₀, ∂K₂/∂ψ = K₃;  K₃ = (c k₃ − s k₂)/J₀, ∂K₃/∂ψ = −K₂.
+template <bool S>
+std::array<Jet<kLocal, S>, 4> staged_point_strains(const PointData& pd, const NodeFrame<S>& f,
+                                                   const V3<double>& ad, const V3<double>& bd,
+                                                   double alpha1, double zeta) {
+  using std::sqrt;
+  using J3 = Jet<3, S>;
+  using J6 = Jet<6, S>;
+  using J9 = Jet<9, S>;
+  using JL = Jet<kLocal, S>;
+  const double ij = pd.inv_j0, xi = pd.xi;
+  // a alone
+  const V3<J3> a = variables<J3>(ad, 0);
+  const J3 saa = dot(a, a);
+  const J3 na = sqrt(saa);
+  const V3<J3> g = scale(1.0 / na, a);
+  // (b, a)
+  const V3<J6> a_ba = promote<6>(a, 3), b_ba = variables<J6>(bd, 0);
+  const V3<J6> kappa = scale(promote<6>(1.0 / saa, 3), cross(a_ba, b_ba));
+  // (a, t₁)
+  const V3<J6> t1_at = promote<6>(f.t1, 3), g_at = promote<6>(g, 0);
+  const J6 ic = checked_inverse_denominator(1.0 + dot(t1_at, g_at), "centreline tangent");
+  const V3<J6> g2 = sr_column(t1_at, promote<6>(f.n2, 3), g_at, ic),
+               g3 = sr_column(t1_at, promote<6>(f.n3, 3), g_at, ic);
+  // (b, a, t₁)
+  const V3<J9> kappa9 = promote<9>(kappa, 0);
+  const J9 k2 = dot(kappa9, promote<9>(g2, 3)), k3 = dot(kappa9, promote<9>(g3, 3));
+  const J9 sr_twist = dot(promote<9>(f.t1, 6), kappa9) * promote<9>(ic, 3);
+  // the twist, by hand
+  const double psi = (1.0 - xi) * alpha1 + xi * zeta;
+  const double c = std::cos(psi), s = std::sin(psi);
+  const double k1 = (zeta - alpha1) * (1.0 / pd.length) - sr_twist.v;
+  std::array<JL, 4> out;
+  out[0] = promote<kLocal>(na, kA);
+  out[0].v = na.v * ij - 1.0;
+  out[0].g *= ij;
+  out[1] = promote<kLocal>(sr_twist, 0);
+  out[1].v = k1 * ij;
+  out[1].g *= -ij;
+  out[1].g[kAlpha1] = -ij / pd.length;
+  out[1].g[kZeta] = ij / pd.length;
+  const double kk2 = (c * k2.v + s * k3.v) * ij, kk3 = (c * k3.v - s * k2.v) * ij;
+  out[2].v = kk2;
+  out[3].v = kk3;
+  const Eigen::Matrix<double, 9, 1> q2 = ij * (c * k3.g - s * k2.g),  // ∂²K₂/∂ψ∂(b, a, t₁)
+      q3 = -ij * (s * k3.g + c * k2.g);  // ∂²K₃/∂ψ∂(b, a, t₁)
+  out[2].g.template head<9>() = ij * (c * k2.g + s * k3.g);
+  out[3].g.template head<9>() = ij * (c * k3.g - s * k2.g);
+  out[2].g[kAlpha1] = (1.0 - xi) * kk3;
+  out[2].g[kZeta] = xi * kk3;
+  out[3].g[kAlpha1] = -(1.0 - xi) * kk2;
+  out[3].g[kZeta] = -xi * kk2;
+  if constexpr (S) {
+    out[0].h *= ij;
+    out[1].h *= -ij;
+    out[2].h.template topLeftCorner<9, 9>() = ij * (c * k2.h + s * k3.h);
+    out[3].h.template topLeftCorner<9, 9>() = ij * (c * k3.h - s * k2.h);
+    const double pa = 1.0 - xi, pz = xi;  // ∂ψ/∂α₁, ∂ψ/∂ζ
+    for (int m = 2; m < 4; ++m) {
+      const Eigen::Matrix<double, 9, 1>& q = m == 2 ? q2 : q3;
+      const double second = m == 2 ? -kk2 : -kk3;  // ∂²K/∂ψ²
+      auto& h = out[m].h;
+      h.template block<9, 1>(0, kAlpha1) = pa * q;
+      h.template block<9, 1>(0, kZeta) = pz * q;
+      h.template block<1, 9>(kAlpha1, 0) = pa * q.transpose();
+      h.template block<1, 9>(kZeta, 0) = pz * q.transpose();
+      h(kAlpha1, kAlpha1) = second * pa * pa;
+      h(kAlpha1, kZeta) = h(kZeta, kAlpha1) = second * pa * pz;
+      h(kZeta, kZeta) = second * pz * pz;
+    }
+  }
+  return out;
 }
 
 // B = ∂y/∂e is sparse: column j (centreline coordinate j = 3k + i) holds S_k′ at a_i, S_k″ at
@@ -95,7 +194,6 @@ void evaluate(const RodSection& section, const RodElementReference& ref,
               const RodElementHistory& history, const Vec14& e, const Vec14& e_dot,
               const RodEvalRequest& request, RodElementResult& out) {
   using FrameJet = Jet<6, kSecond>;
-  using LocalJet = Jet<kLocal, kSecond>;
   const std::array<double, 4> stiff{section.axial_stiffness, section.torsional_stiffness,
                                     section.bending_stiffness_2, section.bending_stiffness_3};
   const std::array<double, 4> damp{section.axial_damping, section.torsional_damping,
@@ -110,9 +208,7 @@ void evaluate(const RodSection& section, const RodElementReference& ref,
   Vec14 zeta_gradient = Vec14::Zero();
   for (int i = 0; i < 6; ++i) zeta_gradient[kTangents[i]] = f6.zeta.g[i];
   zeta_gradient[13] = 1.0;
-  const ElementFrame<LocalJet> frame{embed_t1(f6.t1), embed_t1(f6.n2), embed_t1(f6.n3),
-                                     LocalJet::variable(f6.zeta.v, kZeta), LocalJet(f6.omega.v)};
-  const LocalJet alpha1 = LocalJet::variable(e[12], kAlpha1);
+  const NodeFrame<kSecond> frame{t1_part(f6.t1), t1_part(f6.n2), t1_part(f6.n3)};
 
   std::array<double, 14> x;
   for (int i = 0; i < 14; ++i) x[i] = e[i];
@@ -122,8 +218,7 @@ void evaluate(const RodSection& section, const RodElementReference& ref,
     const PointData pd = point_data(ref, p);
     V3<double> a, b;
     centreline_derivatives(pd, x, a, b);
-    const auto s =
-        point_strains(pd, frame, variables<LocalJet>(a, kA), variables<LocalJet>(b, kB), alpha1);
+    const auto s = staged_point_strains(pd, frame, a, b, e[12], f6.zeta.v);
     const LocalVec y_dot = damping ? map_times(pd, zeta_gradient, e_dot) : LocalVec::Zero();
     const double w = ref.weight[p];
     if (p == kRodGaussPoints / 2) out.strain_mid = Vec3(s[1].v, s[2].v, s[3].v);

@@ -108,10 +108,10 @@ Jet<N, S> operator/(Jet<N, S> a, double s) {
   return a *= 1.0 / s;
 }
 
-// The Hessian updates below are written as one fused loop per entry (column-major, vectorisable)
-// instead of Eigen outer-product expressions, which compiled to out-of-line calls and temporaries
-// (callgrind: half of the rod tangent's instructions). Each entry sums its terms in the order of
-// the formulas, so results are unchanged.
+// The Hessian updates below run column by column (vectorised fixed-size columns) instead of Eigen
+// outer-product expressions, which compiled to out-of-line calls and temporaries (callgrind: half
+// of the rod tangent's instructions). Entry (i, j) adds b_j a_i + a_j b_i, entry (j, i) the same
+// two products in the same order, so a symmetric Hessian stays exactly symmetric.
 
 // (ab)'' = a b'' + b a'' + a' b'ᵀ + b' a'ᵀ
 template <int N, bool S>
@@ -120,8 +120,8 @@ Jet<N, S> operator*(const Jet<N, S>& a, const Jet<N, S>& b) {
   c.v = a.v * b.v;
   c.g = a.v * b.g + b.v * a.g;
   if constexpr (S) {
-    c.h.noalias() =
-        a.v * b.h + b.v * a.h + a.g.lazyProduct(b.g.transpose()) + b.g.lazyProduct(a.g.transpose());
+    for (int j = 0; j < N; ++j)
+      c.h.col(j) = a.v * b.h.col(j) + b.v * a.h.col(j) + (b.g[j] * a.g + a.g[j] * b.g);
   }
   return c;
 }
@@ -134,7 +134,7 @@ Jet<N, S> chain(const Jet<N, S>& u, double f, double f1, double f2) {
   c.g = f1 * u.g;
   if constexpr (S) {
     const typename Jet<N, S>::Grad fg = f2 * u.g;
-    c.h.noalias() = f1 * u.h + fg.lazyProduct(u.g.transpose());
+    for (int j = 0; j < N; ++j) c.h.col(j) = f1 * u.h.col(j) + u.g[j] * fg;
   }
   return c;
 }
@@ -179,9 +179,10 @@ Jet<N, S> atan2(const Jet<N, S>& y, const Jet<N, S>& x) {
   if constexpr (S) {
     const double fxx = 2.0 * x.v * y.v / r4, fxy = (y.v * y.v - x.v * x.v) / r4;
     for (int j = 0; j < N; ++j)
-      for (int i = 0; i < N; ++i)
-        c.h(i, j) = fx * x.h(i, j) + fy * y.h(i, j) + fxx * (x.g[i] * x.g[j] - y.g[i] * y.g[j]) +
-                    fxy * (x.g[i] * y.g[j] + y.g[i] * x.g[j]);
+      for (int i = j; i < N; ++i)
+        c.h(j, i) = c.h(i, j) = fx * x.h(i, j) + fy * y.h(i, j) +
+                                fxx * (x.g[i] * x.g[j] - y.g[i] * y.g[j]) +
+                                fxy * (x.g[i] * y.g[j] + y.g[i] * x.g[j]);
   }
   return c;
 }
