@@ -40,29 +40,68 @@ V3<Jet<M, S>> promote(const V3<Jet<N, S>>& v, int offset) {
   return {promote<M>(v.x, offset), promote<M>(v.y, offset), promote<M>(v.z, offset)};
 }
 
-// A jet in (t₁, t₂) that depends on t₁ only, as a jet in t₁.
-template <bool S>
-Jet<3, S> t1_part(const Jet<6, S>& x) {
-  Jet<3, S> y(x.v);
-  y.g = x.g.template head<3>();
-  if constexpr (S) y.h = x.h.template topLeftCorner<3, 3>();
-  return y;
-}
-template <bool S>
-V3<Jet<3, S>> t1_part(const V3<Jet<6, S>>& v) {
-  return {t1_part(v.x), t1_part(v.y), t1_part(v.z)};
-}
-
 template <class J>
 V3<J> variables(const V3<double>& v, int first) {
   return {J::variable(v.x, first), J::variable(v.y, first + 1), J::variable(v.z, first + 2)};
 }
 
-// Node 1's untwisted frame (t̂₁, d₂, d₃ of SR(R₁ → t̂₁)) as jets in t₁.
+// Node 1's untwisted frame (t̂₁, d₂, d₃ of SR(R₁ → t̂₁)) as jets in t₁, and ζ = α₂ + ω as a
+// jet in (t₁, t₂).
 template <bool S>
 struct NodeFrame {
   V3<Jet<3, S>> t1, n2, n3;
+  Jet<6, S> zeta;
 };
+
+// element_frame (kirchhoff_rod_strains.hpp) with the same operations, each node's quantities as
+// jets in its own tangent (3 variables) and only SR(Λ̄₁ → t̂₂) and ω in both (6).
+template <bool S>
+NodeFrame<S> staged_element_frame(const RodElementHistory& h, const Vec14& e) {
+  using std::sqrt;
+  using J3 = Jet<3, S>;
+  using J6 = Jet<6, S>;
+  const V3<J3> t1 = variables<J3>({e[3], e[4], e[5]}, 0),
+               t2 = variables<J3>({e[9], e[10], e[11]}, 0);
+  const J3 inv1 = 1.0 / sqrt(dot(t1, t1)), inv2 = 1.0 / sqrt(dot(t2, t2));
+  const V3<J3> u1 = scale(inv1, t1), u2 = scale(inv2, t2);
+  const V3<J3> r11 = constant<J3>(h.frame1.col(0)), r12 = constant<J3>(h.frame1.col(1)),
+               r13 = constant<J3>(h.frame1.col(2));
+  const J3 i1 = checked_inverse_denominator(1.0 + dot(r11, u1), "node 1 tangent");
+  const V3<J3> n12 = sr_column(r11, r12, u1, i1), n13 = sr_column(r11, r13, u1, i1);
+  const V3<J3> r21 = constant<J3>(h.frame2.col(0)), r22 = constant<J3>(h.frame2.col(1));
+  const J3 i2 = checked_inverse_denominator(1.0 + dot(r21, u2), "node 2 tangent");
+  const V3<J3> n22 = sr_column(r21, r22, u2, i2);
+  const V3<J6> u1_6 = promote<6>(u1, 0), u2_6 = promote<6>(u2, 3), n22_6 = promote<6>(n22, 3);
+  const J6 i12 = checked_inverse_denominator(1.0 + dot(u1_6, u2_6), "element end tangent");
+  const V3<J6> m2 = sr_column(u1_6, promote<6>(n12, 0), u2_6, i12),
+               m3 = sr_column(u1_6, promote<6>(n13, 0), u2_6, i12);
+  J6 omega = atan2(dot(n22_6, m3), dot(n22_6, m2));
+  omega =
+      omega + 2.0 * std::numbers::pi * std::round((h.omega - omega.v) / (2.0 * std::numbers::pi));
+  return {u1, n12, n13, J6(e[13]) + omega};
+}
+
+// x·y for x a jet in (b, a) and y one in (a, t₁), as a jet in (b, a, t₁), by the product rule
+// without first promoting both to 9 variables. The value takes dot()'s operations.
+template <bool S>
+Jet<9, S> dot_ba_at(const V3<Jet<6, S>>& x, const V3<Jet<6, S>>& y) {
+  const std::array<const Jet<6, S>*, 3> xs{&x.x, &x.y, &x.z}, ys{&y.x, &y.y, &y.z};
+  Jet<9, S> c(x.x.v * y.x.v + x.y.v * y.y.v + x.z.v * y.z.v);
+  for (int k = 0; k < 3; ++k) {
+    const Jet<6, S>&xk = *xs[k], &yk = *ys[k];
+    c.g.template head<6>() += yk.v * xk.g;
+    c.g.template tail<6>() += xk.v * yk.g;
+    if constexpr (S) {
+      c.h.template topLeftCorner<6, 6>() += yk.v * xk.h;
+      c.h.template bottomRightCorner<6, 6>() += xk.v * yk.h;
+      for (int j = 0; j < 6; ++j) {
+        c.h.template block<6, 1>(0, 3 + j) += yk.g[j] * xk.g;
+        c.h.template block<6, 1>(3, j) += xk.g[j] * yk.g;
+      }
+    }
+  }
+  return c;
+}
 
 // The strains (ε, K₁, K₂, K₃) at a point as jets in y = (b, a, t₁, α₁, ζ). The operations and
 // their order are those of point_strains (kirchhoff_rod_strains.hpp), so the values are bitwise
@@ -95,9 +134,8 @@ std::array<Jet<kLocal, S>, 4> staged_point_strains(const PointData& pd, const No
   const V3<J6> g2 = sr_column(t1_at, promote<6>(f.n2, 3), g_at, ic),
                g3 = sr_column(t1_at, promote<6>(f.n3, 3), g_at, ic);
   // (b, a, t₁)
-  const V3<J9> kappa9 = promote<9>(kappa, 0);
-  const J9 k2 = dot(kappa9, promote<9>(g2, 3)), k3 = dot(kappa9, promote<9>(g3, 3));
-  const J9 sr_twist = dot(promote<9>(f.t1, 6), kappa9) * promote<9>(ic, 3);
+  const J9 k2 = dot_ba_at(kappa, g2), k3 = dot_ba_at(kappa, g3);
+  const J9 sr_twist = dot_ba_at(kappa, t1_at) * promote<9>(ic, 3);
   // the twist, by hand
   const double psi = (1.0 - xi) * alpha1 + xi * zeta;
   const double c = std::cos(psi), s = std::sin(psi);
@@ -193,7 +231,6 @@ template <bool kSecond>
 void evaluate(const RodSection& section, const RodElementReference& ref,
               const RodElementHistory& history, const Vec14& e, const Vec14& e_dot,
               const RodEvalRequest& request, RodElementResult& out) {
-  using FrameJet = Jet<6, kSecond>;
   const std::array<double, 4> stiff{section.axial_stiffness, section.torsional_stiffness,
                                     section.bending_stiffness_2, section.bending_stiffness_3};
   const std::array<double, 4> damp{section.axial_damping, section.torsional_damping,
@@ -201,14 +238,12 @@ void evaluate(const RodSection& section, const RodElementReference& ref,
   const bool damping = section.has_damping();
   const bool stiffness = kSecond && request.stiffness;
 
-  // Element frame with jets in (t₁, t₂); α₂ enters ζ linearly.
-  const ElementFrame<FrameJet> f6 =
-      element_frame(history, variables<FrameJet>({e[3], e[4], e[5]}, 0),
-                    variables<FrameJet>({e[9], e[10], e[11]}, 3), FrameJet(e[13]));
+  // Element frame: node 1's triad in t₁, ζ = α₂ + ω in (t₁, t₂) (α₂ enters linearly).
+  const NodeFrame<kSecond> frame = staged_element_frame<kSecond>(history, e);
+  const Jet<6, kSecond>& zeta = frame.zeta;
   Vec14 zeta_gradient = Vec14::Zero();
-  for (int i = 0; i < 6; ++i) zeta_gradient[kTangents[i]] = f6.zeta.g[i];
+  for (int i = 0; i < 6; ++i) zeta_gradient[kTangents[i]] = zeta.g[i];
   zeta_gradient[13] = 1.0;
-  const NodeFrame<kSecond> frame{t1_part(f6.t1), t1_part(f6.n2), t1_part(f6.n3)};
 
   std::array<double, 14> x;
   for (int i = 0; i < 14; ++i) x[i] = e[i];
@@ -218,7 +253,7 @@ void evaluate(const RodSection& section, const RodElementReference& ref,
     const PointData pd = point_data(ref, p);
     V3<double> a, b;
     centreline_derivatives(pd, x, a, b);
-    const auto s = staged_point_strains(pd, frame, a, b, e[12], f6.zeta.v);
+    const auto s = staged_point_strains(pd, frame, a, b, e[12], zeta.v);
     const LocalVec y_dot = damping ? map_times(pd, zeta_gradient, e_dot) : LocalVec::Zero();
     const double w = ref.weight[p];
     if (p == kRodGaussPoints / 2) out.strain_mid = Vec3(s[1].v, s[2].v, s[3].v);
@@ -260,12 +295,11 @@ void evaluate(const RodSection& section, const RodElementReference& ref,
       if (damping) {
         Eigen::Matrix<double, 6, 1> et;
         for (int i = 0; i < 6; ++i) et[i] = e_dot[kTangents[i]];
-        hz_edot = f6.zeta.h * et;
+        hz_edot = zeta.h * et;
       }
       for (int j = 0; j < 6; ++j) {
         const int cj = kTangents[j];
-        for (int i = 0; i < 6; ++i)
-          out.stiffness(kTangents[i], cj) += zeta_stress * f6.zeta.h(i, j);
+        for (int i = 0; i < 6; ++i) out.stiffness(kTangents[i], cj) += zeta_stress * zeta.h(i, j);
         if (damping) out.stiffness.col(cj).noalias() += hz_edot[j] * zeta_damping;
       }
     }
