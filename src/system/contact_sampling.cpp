@@ -5,6 +5,7 @@
 
 #include "ancf/physics/hermite_shape.hpp"
 #include "ancf/system/contact_pattern.hpp"
+#include "contact_bounds.hpp"
 
 namespace ancf::detail {
 
@@ -126,9 +127,16 @@ void visit_cable_shape(const Model& model, const SystemState& state, Workspace& 
   const bool body = shape.owner == ContactShapeData::Owner::body;
   if (body)
     blocks.first_b = shape.body_coordinate, blocks.bb = &model.body_slots(shape.owner_index);
+  const bool hull_test = !how.all_samples && ws.hull_broad_phase;
+  const ShapeDistanceBound hull_bound(shape.shape, pose);
   for (Index local = 0; local < c.count; ++local) {
     const Index j = c.first + local;
     if (!how.all_samples && !broad.may_touch(inflated((*boxes)[j], cable.section.radius))) continue;
+    // Second level: an element whose centreline provably keeps a gap ≥ 0 everywhere
+    // (contact_bounds.hpp) has no active sample.
+    if (hull_test && hull_bound(element_hull(state.q.segment<12>(cable.first_coordinate + 6 * j),
+                                             cable.elements[j].length)) >= cable.section.radius)
+      continue;
     blocks.first_a = cable.first_coordinate + 6 * j;
     blocks.aa = &model.element_slots(c.cable, j);
     if (body) {
@@ -172,9 +180,24 @@ void visit_cable_cable(const Model& model, const SystemState& state, Workspace& 
       for (Index lj = 0; lj < nb; ++lj) ws.candidates.push_back(lj);
     } else {
       const Aabb box_i = inflated((*boxes_a)[i], reach);
-      if (box_i.overlaps(ws.cable_boxes[c.cable_b]))
-        for (Index lj = 0; lj < nb; ++lj)
-          if (box_i.overlaps((*boxes_b)[c.first_b + lj])) ws.candidates.push_back(lj);
+      if (box_i.overlaps(ws.cable_boxes[c.cable_b])) {
+        // Second level: element pairs whose centrelines provably stay ≥ reach apart
+        // (contact_bounds.hpp) have no active sample and do not change the closest element.
+        const ElementHull hull_i =
+            ws.hull_broad_phase ? element_hull(state.q.segment<12>(a.first_coordinate + 6 * i),
+                                               a.elements[i].length)
+                                : ElementHull{};
+        for (Index lj = 0; lj < nb; ++lj) {
+          const Index j = c.first_b + lj;
+          if (!box_i.overlaps((*boxes_b)[j])) continue;
+          if (ws.hull_broad_phase &&
+              hull_distance_bound(hull_i,
+                                  element_hull(state.q.segment<12>(b.first_coordinate + 6 * j),
+                                               b.elements[j].length)) >= reach)
+            continue;
+          ws.candidates.push_back(lj);
+        }
+      }
     }
     if (ws.candidates.empty()) continue;
     blocks.first_a = a.first_coordinate + 6 * i;
