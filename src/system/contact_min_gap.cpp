@@ -99,9 +99,12 @@ double cable_sample_min_gap(const Model& model, const SystemState& state, Worksp
   }
   double smallest = kInf;
   const auto element_bound = [&](Index li) {
+    // min over j of max(box distance, chord bound): the chord bound only where the box distance
+    // is below the running minimum (it can only raise the value).
     double d = kInf;
     for (Index lj = 0; lj < c.count_b; ++lj)
-      d = std::min(d, hull_distance_bound(hulls_a[li], hulls_b[lj]));
+      if (box_distance(hulls_a[li].box, hulls_b[lj].box) < d)
+        d = std::min(d, hull_distance_bound(hulls_a[li], hulls_b[lj]));
     return d - reach;
   };
   branch_and_bound(

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <optional>
 
 #include "ancf/physics/hermite_shape.hpp"
 #include "ancf/system/contact_pattern.hpp"
@@ -56,9 +57,9 @@ bool ShapeBroadPhase::may_touch(const Aabb& element_box) const {
 
 // Whole-cable boxes of every cable that takes part in a contact pair: the box of the Bézier
 // control points of all its elements (each element's box is that of its four control points, and
-// the end point of one element is the start of the next). Element boxes are only marked stale:
-// they are computed on demand (element_boxes_of) for the cables whose whole box passes a pair's
-// test, so pairs that are far apart cost one pass over the nodes per cable and call.
+// the end point of one element is the start of the next). The element boxes come out of the same
+// pass (element_bounding_box's arithmetic), so pairs that are far apart cost one pass over the
+// nodes per cable and call, and pairs that pass need no second one.
 void refresh_cable_boxes(const Model& model, const SystemState& state, Workspace& ws) {
   for (std::size_t c = 0; c < ws.element_boxes.size(); ++c) {
     if (ws.element_boxes[c].empty()) continue;
@@ -67,15 +68,19 @@ void refresh_cable_boxes(const Model& model, const SystemState& state, Workspace
     for (std::size_t j = 0; j < cable.elements.size(); ++j) {
       const Index base = cable.first_coordinate + 6 * static_cast<Index>(j);
       const double third = cable.elements[j].length / 3.0;
-      const Vec3 a = state.q.segment<3>(base) + third * state.q.segment<3>(base + 3);
+      const Vec3 start = state.q.segment<3>(base);
+      const Vec3 a = start + third * state.q.segment<3>(base + 3);
       const Vec3 b = state.q.segment<3>(base + 6) - third * state.q.segment<3>(base + 9);
       const Vec3 end = state.q.segment<3>(base + 6);
-      lower = lower.cwiseMin(a).cwiseMin(b).cwiseMin(end);
-      upper = upper.cwiseMax(a).cwiseMax(b).cwiseMax(end);
+      Aabb& box = ws.element_boxes[c][j];
+      box.lower = start.cwiseMin(a).cwiseMin(b).cwiseMin(end);
+      box.upper = start.cwiseMax(a).cwiseMax(b).cwiseMax(end);
+      lower = lower.cwiseMin(box.lower);
+      upper = upper.cwiseMax(box.upper);
     }
     ws.cable_boxes[c].lower = lower;
     ws.cable_boxes[c].upper = upper;
-    ws.element_boxes_current[c] = 0;
+    ws.element_boxes_current[c] = 1;
   }
 }
 
@@ -128,15 +133,18 @@ void visit_cable_shape(const Model& model, const SystemState& state, Workspace& 
   if (body)
     blocks.first_b = shape.body_coordinate, blocks.bb = &model.body_slots(shape.owner_index);
   const bool hull_test = !how.all_samples && ws.hull_broad_phase;
-  const ShapeDistanceBound hull_bound(shape.shape, pose);
+  std::optional<ShapeDistanceBound> hull_bound;  // made for the first element past the box test
   for (Index local = 0; local < c.count; ++local) {
     const Index j = c.first + local;
     if (!how.all_samples && !broad.may_touch(inflated((*boxes)[j], cable.section.radius))) continue;
     // Second level: an element whose centreline provably keeps a gap ≥ 0 everywhere
     // (contact_bounds.hpp) has no active sample.
-    if (hull_test && hull_bound(element_hull(state.q.segment<12>(cable.first_coordinate + 6 * j),
-                                             cable.elements[j].length)) >= cable.section.radius)
-      continue;
+    if (hull_test) {
+      if (!hull_bound) hull_bound.emplace(shape.shape, pose);
+      if ((*hull_bound)(element_hull(state.q.segment<12>(cable.first_coordinate + 6 * j),
+                                     cable.elements[j].length)) >= cable.section.radius)
+        continue;
+    }
     blocks.first_a = cable.first_coordinate + 6 * j;
     blocks.aa = &model.element_slots(c.cable, j);
     if (body) {
