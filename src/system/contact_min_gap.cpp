@@ -1,25 +1,11 @@
 // Exact minimum gaps of a contact pair for the outputs (contact_min_gap.hpp), by branch and bound.
 //
-// Every point of a cable element's centreline lies in the box of its Bézier control points
-// (element_bounding_box), so a lower bound L of the gap over a whole element follows from boxes:
-//  * sphere or capped cylinder on an owner (r_O, A): outside the shape the kernel's signed
-//    distance is the Euclidean distance d_y from y = Aᵀ(x − r_O) to the shape in owner
-//    coordinates. With the shape's global box B (of the image r_O + A·shape) at distance D > 0
-//    from the element box and e = ‖I − A Aᵀ‖ (zero for an orthonormal A; natural coordinates of
-//    a body satisfy it to the Newton tolerance), |x − z| ≤ ‖A‖ d_y + e|x − r_O| for the image z of
-//    the closest shape point, hence d_y ≥ (D − e ρ)/√(1 + e) with ρ ≥ |x − r_O| over the box; a
-//    point inside the shape (d_y ≤ 0) has z = r_O + A y in B, |x − z| ≤ e ρ, so D > e ρ also
-//    rules that out. D ≤ e ρ: no bound.
-//  * plane: its kernel distance n·(Aᵀ(x − r_O) − p) is affine in x: its minimum over the box is at
-//    a corner, exactly the bound.
-//  * cable–cable: the projection distance of a sample onto an element of cable b is at least the
-//    distance of the sample point to that element's box, and over an element of cable a at least
-//    the box–box distance.
-// Each bound is lowered by a round-off allowance of 1e-12 (1 + |coordinates|). An element (or
-// an element of cable b for one sample) whose bound is ≥ the smallest gap found so far cannot
-// hold a strictly smaller one and is skipped; the minimum of the rest is the same number, bit for
-// bit, as the exhaustive search, since min is exact and each evaluated value is computed by the
-// same code. The element with the smallest bound is searched first.
+// Lower bounds of the gap over a whole element (or, for one sample, over a whole element of the
+// other cable) follow from the element's Bézier control points (contact_bounds.hpp). An element
+// whose bound is ≥ the smallest gap found so far cannot hold a strictly smaller one and is
+// skipped; the minimum of the rest is the same number, bit for bit, as the exhaustive search,
+// since min is exact and each evaluated value is computed by the same code. The element with the
+// smallest bound is searched first.
 #include "contact_min_gap.hpp"
 
 #include <algorithm>
@@ -28,95 +14,16 @@
 #include <variant>
 
 #include "ancf/physics/hermite_shape.hpp"
+#include "contact_bounds.hpp"
 
 namespace ancf::detail {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-double box_distance(const Aabb& a, const Aabb& b) {
-  const Eigen::Array3d gap =
-      (a.lower.array() - b.upper.array()).max(b.lower.array() - a.upper.array()).max(0.0);
-  return std::sqrt(gap.square().sum());
+Vec12 cable_element(const CableData& cable, Index element, const SystemState& state) {
+  return state.q.segment<12>(cable.first_coordinate + 6 * element);
 }
-
-double point_box_distance(const Vec3& x, const Aabb& b) {
-  const Eigen::Array3d gap =
-      (b.lower.array() - x.array()).max(x.array() - b.upper.array()).max(0.0);
-  return std::sqrt(gap.square().sum());
-}
-
-// Distance from x to the segment [a, b] (a == b: the point).
-double segment_distance(const Vec3& x, const Vec3& a, const Vec3& b) {
-  const Vec3 ab = b - a;
-  const double length2 = ab.squaredNorm();
-  const double s = length2 > 0.0 ? std::clamp((x - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
-  return (x - (a + s * ab)).norm();
-}
-
-double round_off(const Aabb& box) {
-  return 1e-12 * (1.0 + std::max(box.lower.cwiseAbs().maxCoeff(), box.upper.cwiseAbs().maxCoeff()));
-}
-
-// Lower bound of the kernel's signed distance (before subtracting the cable radius) over every
-// point of `box`, for a shape placed by `pose` (see the file comment).
-class ShapeBound {
- public:
-  ShapeBound(const ContactShape& shape, const ShapeOwnerPose& pose) : broad_(shape, pose) {
-    const Mat3& a = pose.rotation;
-    e_ = (Mat3::Identity() - a * a.transpose()).norm();  // Frobenius ≥ spectral norm
-    norm_a_ = std::sqrt(1.0 + e_);                       // ‖A‖² = ‖A Aᵀ‖ ≤ 1 + e
-    if (const auto* sphere = std::get_if<SphereShape>(&shape)) {
-      axis_start_ = axis_end_ = pose.origin + a * sphere->centre;
-      radius_ = sphere->radius;
-    } else if (const auto* cyl = std::get_if<CappedCylinderShape>(&shape)) {
-      axis_start_ = pose.origin + a * (cyl->centre - cyl->half_length * cyl->axis);
-      axis_end_ = pose.origin + a * (cyl->centre + cyl->half_length * cyl->axis);
-      radius_ = cyl->radius;
-    }
-  }
-  [[nodiscard]] double operator()(const Aabb& box) const {
-    const ShapeOwnerPose& pose = broad_.pose;
-    if (const auto* plane = std::get_if<PlaneShape>(&broad_.shape)) {
-      double lowest = kInf;
-      for (int corner = 0; corner < 8; ++corner) {
-        const Vec3 z((corner & 1) ? box.upper.x() : box.lower.x(),
-                     (corner & 2) ? box.upper.y() : box.lower.y(),
-                     (corner & 4) ? box.upper.z() : box.lower.z());
-        lowest = std::min(lowest, plane->normal.dot(pose.rotation.transpose() * (z - pose.origin) -
-                                                    plane->point));
-      }
-      return lowest - round_off(box) * (1.0 + pose.rotation.norm());
-    }
-    // D: a lower bound of the global distance from the box to the image of the shape, the larger
-    // of the distance to its box and that from the box (centre c, half diagonal) to the image of
-    // the sphere's centre or the cylinder's axis minus ‖A‖R (the image of the ball of radius R
-    // lies within ‖A‖R of the image of its centre; the capped cylinder within its axis's reach).
-    const Vec3 c = 0.5 * (box.lower + box.upper);
-    const double half_diagonal = 0.5 * (box.upper - box.lower).norm();
-    const double d =
-        std::max(box_distance(box, broad_.box),
-                 segment_distance(c, axis_start_, axis_end_) - half_diagonal - norm_a_ * radius_);
-    if (!(e_ <= 0.1)) return -kInf;
-    double rho = 0.0;  // farthest corner of the box from the owner's origin
-    for (int corner = 0; corner < 8; ++corner) {
-      const Vec3 z((corner & 1) ? box.upper.x() : box.lower.x(),
-                   (corner & 2) ? box.upper.y() : box.lower.y(),
-                   (corner & 4) ? box.upper.z() : box.lower.z());
-      rho = std::max(rho, (z - pose.origin).norm());
-    }
-    // A point inside the shape has its image z in B with |x − z| ≤ e ρ: D > e ρ rules that out.
-    const double allowance = round_off(box) + 1e-12 * rho;
-    if (!(d - e_ * rho > allowance)) return -kInf;
-    return (d - e_ * rho) / norm_a_ - allowance;
-  }
-
- private:
-  ShapeBroadPhase broad_;
-  double e_ = 0.0, norm_a_ = 1.0;
-  Vec3 axis_start_ = Vec3::Zero(), axis_end_ = Vec3::Zero();  // image of the centre or axis
-  double radius_ = 0.0;
-};
 
 CableSample sample_at(const CableData& cable, Index element, int k, int samples,
                       const SystemState& state) {
@@ -152,12 +59,15 @@ double shape_sample_min_gap(const Model& model, const SystemState& state, Worksp
   const ContactShapeData& shape = model.shapes()[c.shape];
   const CableData& cable = model.cables()[c.cable];
   const ShapeOwnerPose pose = owner_pose(shape, state, ws.frames_at(model, state.t));
-  const ShapeBound shape_bound(shape.shape, pose);
-  const std::vector<Aabb>* boxes = prune ? &element_boxes_of(model, state, ws, c.cable) : nullptr;
+  const ShapeDistanceBound shape_bound(shape.shape, pose);
   double smallest = kInf;
   branch_and_bound(
       c.count, prune,
-      [&](Index local) { return shape_bound((*boxes)[c.first + local]) - cable.section.radius; },
+      [&](Index local) {
+        return shape_bound(element_hull(cable_element(cable, c.first + local, state),
+                                        cable.elements[c.first + local].length)) -
+               cable.section.radius;
+      },
       [&] { return smallest; },
       [&](Index local) {
         for (int k = 0; k < c.samples; ++k) {
@@ -177,17 +87,25 @@ double cable_sample_min_gap(const Model& model, const SystemState& state, Worksp
   const CableData& a = model.cables()[c.cable_a];
   const CableData& b = model.cables()[c.cable_b];
   const double reach = a.section.radius + b.section.radius;
-  const std::vector<Aabb>* boxes_a =
-      prune ? &element_boxes_of(model, state, ws, c.cable_a) : nullptr;
-  const std::vector<Aabb>* boxes_b =
-      prune ? &element_boxes_of(model, state, ws, c.cable_b) : nullptr;
+  // Hulls of the elements of both sides (outputs run between steps: these may allocate).
+  std::vector<ElementHull> hulls_a, hulls_b;
+  if (prune) {
+    for (Index li = 0; li < c.count_a; ++li)
+      hulls_a.push_back(
+          element_hull(cable_element(a, c.first_a + li, state), a.elements[c.first_a + li].length));
+    for (Index lj = 0; lj < c.count_b; ++lj)
+      hulls_b.push_back(
+          element_hull(cable_element(b, c.first_b + lj, state), b.elements[c.first_b + lj].length));
+  }
   double smallest = kInf;
   const auto element_bound = [&](Index li) {
-    const Aabb& box = (*boxes_a)[c.first_a + li];
+    // min over j of max(box distance, chord bound): the chord bound only where the box distance
+    // is below the running minimum (it can only raise the value).
     double d = kInf;
     for (Index lj = 0; lj < c.count_b; ++lj)
-      d = std::min(d, box_distance(box, (*boxes_b)[c.first_b + lj]));
-    return d - round_off(box) - reach;
+      if (box_distance(hulls_a[li].box, hulls_b[lj].box) < d)
+        d = std::min(d, hull_distance_bound(hulls_a[li], hulls_b[lj]));
+    return d - reach;
   };
   branch_and_bound(
       c.count_a, prune, element_bound, [&] { return smallest; },
@@ -206,8 +124,8 @@ double cable_sample_min_gap(const Model& model, const SystemState& state, Worksp
           const double slack = 1e-12 * (1.0 + x.cwiseAbs().maxCoeff());
           for (Index lj = 0; lj < c.count_b; ++lj) {
             const Index j = c.first_b + lj;
-            if (prune && point_box_distance(x, (*boxes_b)[j]) - slack >=
-                             std::min(best.distance, smallest + reach))
+            if (prune && point_hull_distance_bound(x, hulls_b[lj]) >=
+                             std::min(best.distance, smallest + reach + slack))
               continue;
             const ElementProjection p = project_onto_element(
                 state.q.segment<12>(b.first_coordinate + 6 * j), b.elements[j].length, x);
@@ -243,8 +161,7 @@ double centreline_min_gap(const Model& model, const SystemState& state, Workspac
   const ContactShapeData& shape = model.shapes()[c.shape];
   const CableData& cable = model.cables()[c.cable];
   const ShapeOwnerPose pose = owner_pose(shape, state, ws.frames_at(model, state.t));
-  const ShapeBound shape_bound(shape.shape, pose);
-  const std::vector<Aabb>* boxes = prune ? &element_boxes_of(model, state, ws, c.cable) : nullptr;
+  const ShapeDistanceBound shape_bound(shape.shape, pose);
   // Scan each element at kScan + 1 points (ends included), then refine the smallest by a
   // golden-section search on its two neighbouring intervals: the gap along a cubic centreline
   // near a smooth convex shape is unimodal on that scale, and 60 reductions of 0.618 shrink the
@@ -253,7 +170,11 @@ double centreline_min_gap(const Model& model, const SystemState& state, Workspac
   double smallest = kInf;
   branch_and_bound(
       c.count, prune,
-      [&](Index local) { return shape_bound((*boxes)[c.first + local]) - cable.section.radius; },
+      [&](Index local) {
+        return shape_bound(element_hull(cable_element(cable, c.first + local, state),
+                                        cable.elements[c.first + local].length)) -
+               cable.section.radius;
+      },
       [&] { return smallest; },
       [&](Index local) {
         const Index j = c.first + local;

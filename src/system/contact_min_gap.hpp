@@ -11,14 +11,14 @@
 namespace ancf::detail {
 
 /// Smallest gap g over all samples of pair `pair` (Model numbering: cable–shape pairs first) [m],
-/// each sample's gap computed by its contact kernel exactly as for the residual. Pruned: needs
-/// refresh_cable_boxes at `state` first. Counts the kernel calls in ws.narrow_phase_samples.
+/// each sample's gap computed by its contact kernel exactly as for the residual. Counts the kernel
+/// calls in ws.narrow_phase_samples.
 double sample_min_gap(const Model& model, const SystemState& state, Workspace& ws, Index pair,
                       ContactSearch search);
 
 /// Smallest gap d − r over every point of the centreline of cable–shape pair `pair`'s candidate
 /// elements (not only at its samples) [m]: a scan of 17 points per element refined by
-/// golden-section search. Pruned: needs refresh_cable_boxes at `state` first.
+/// golden-section search.
 double centreline_min_gap(const Model& model, const SystemState& state, Workspace& ws, Index pair,
                           ContactSearch search);
 

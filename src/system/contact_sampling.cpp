@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <limits>
+#include <optional>
 
 #include "ancf/physics/hermite_shape.hpp"
 #include "ancf/system/contact_pattern.hpp"
+#include "contact_bounds.hpp"
 
 namespace ancf::detail {
 
@@ -55,9 +57,9 @@ bool ShapeBroadPhase::may_touch(const Aabb& element_box) const {
 
 // Whole-cable boxes of every cable that takes part in a contact pair: the box of the Bézier
 // control points of all its elements (each element's box is that of its four control points, and
-// the end point of one element is the start of the next). Element boxes are only marked stale:
-// they are computed on demand (element_boxes_of) for the cables whose whole box passes a pair's
-// test, so pairs that are far apart cost one pass over the nodes per cable and call.
+// the end point of one element is the start of the next). The element boxes come out of the same
+// pass (element_bounding_box's arithmetic), so pairs that are far apart cost one pass over the
+// nodes per cable and call, and pairs that pass need no second one.
 void refresh_cable_boxes(const Model& model, const SystemState& state, Workspace& ws) {
   for (std::size_t c = 0; c < ws.element_boxes.size(); ++c) {
     if (ws.element_boxes[c].empty()) continue;
@@ -66,15 +68,19 @@ void refresh_cable_boxes(const Model& model, const SystemState& state, Workspace
     for (std::size_t j = 0; j < cable.elements.size(); ++j) {
       const Index base = cable.first_coordinate + 6 * static_cast<Index>(j);
       const double third = cable.elements[j].length / 3.0;
-      const Vec3 a = state.q.segment<3>(base) + third * state.q.segment<3>(base + 3);
+      const Vec3 start = state.q.segment<3>(base);
+      const Vec3 a = start + third * state.q.segment<3>(base + 3);
       const Vec3 b = state.q.segment<3>(base + 6) - third * state.q.segment<3>(base + 9);
       const Vec3 end = state.q.segment<3>(base + 6);
-      lower = lower.cwiseMin(a).cwiseMin(b).cwiseMin(end);
-      upper = upper.cwiseMax(a).cwiseMax(b).cwiseMax(end);
+      Aabb& box = ws.element_boxes[c][j];
+      box.lower = start.cwiseMin(a).cwiseMin(b).cwiseMin(end);
+      box.upper = start.cwiseMax(a).cwiseMax(b).cwiseMax(end);
+      lower = lower.cwiseMin(box.lower);
+      upper = upper.cwiseMax(box.upper);
     }
     ws.cable_boxes[c].lower = lower;
     ws.cable_boxes[c].upper = upper;
-    ws.element_boxes_current[c] = 0;
+    ws.element_boxes_current[c] = 1;
   }
 }
 
@@ -126,9 +132,19 @@ void visit_cable_shape(const Model& model, const SystemState& state, Workspace& 
   const bool body = shape.owner == ContactShapeData::Owner::body;
   if (body)
     blocks.first_b = shape.body_coordinate, blocks.bb = &model.body_slots(shape.owner_index);
+  const bool hull_test = !how.all_samples && ws.hull_broad_phase;
+  std::optional<ShapeDistanceBound> hull_bound;  // made for the first element past the box test
   for (Index local = 0; local < c.count; ++local) {
     const Index j = c.first + local;
     if (!how.all_samples && !broad.may_touch(inflated((*boxes)[j], cable.section.radius))) continue;
+    // Second level: an element whose centreline provably keeps a gap ≥ 0 everywhere
+    // (contact_bounds.hpp) has no active sample.
+    if (hull_test) {
+      if (!hull_bound) hull_bound.emplace(shape.shape, pose);
+      if ((*hull_bound)(element_hull(state.q.segment<12>(cable.first_coordinate + 6 * j),
+                                     cable.elements[j].length)) >= cable.section.radius)
+        continue;
+    }
     blocks.first_a = cable.first_coordinate + 6 * j;
     blocks.aa = &model.element_slots(c.cable, j);
     if (body) {
@@ -172,9 +188,24 @@ void visit_cable_cable(const Model& model, const SystemState& state, Workspace& 
       for (Index lj = 0; lj < nb; ++lj) ws.candidates.push_back(lj);
     } else {
       const Aabb box_i = inflated((*boxes_a)[i], reach);
-      if (box_i.overlaps(ws.cable_boxes[c.cable_b]))
-        for (Index lj = 0; lj < nb; ++lj)
-          if (box_i.overlaps((*boxes_b)[c.first_b + lj])) ws.candidates.push_back(lj);
+      if (box_i.overlaps(ws.cable_boxes[c.cable_b])) {
+        // Second level: element pairs whose centrelines provably stay ≥ reach apart
+        // (contact_bounds.hpp) have no active sample and do not change the closest element.
+        const ElementHull hull_i =
+            ws.hull_broad_phase ? element_hull(state.q.segment<12>(a.first_coordinate + 6 * i),
+                                               a.elements[i].length)
+                                : ElementHull{};
+        for (Index lj = 0; lj < nb; ++lj) {
+          const Index j = c.first_b + lj;
+          if (!box_i.overlaps((*boxes_b)[j])) continue;
+          if (ws.hull_broad_phase &&
+              hull_distance_bound(hull_i,
+                                  element_hull(state.q.segment<12>(b.first_coordinate + 6 * j),
+                                               b.elements[j].length)) >= reach)
+            continue;
+          ws.candidates.push_back(lj);
+        }
+      }
     }
     if (ws.candidates.empty()) continue;
     blocks.first_a = a.first_coordinate + 6 * i;

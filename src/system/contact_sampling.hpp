@@ -52,10 +52,10 @@ struct ShapeBroadPhase {
   [[nodiscard]] bool may_touch(const Aabb& element_box) const;
 };
 
-/// Refresh the whole-cable boxes of the cables in contact pairs and mark their element boxes
-/// stale (element_boxes_of recomputes them on demand).
+/// Refresh the whole-cable boxes and the element boxes of the cables in contact pairs (one pass).
 void refresh_cable_boxes(const Model& model, const SystemState& state, Workspace& ws);
-/// Element boxes of cable c at `state` (computed at most once per refresh_cable_boxes).
+/// Element boxes of cable c: those of the last refresh_cable_boxes, which must have been at `state`
+/// (computed here only if no refresh has run yet).
 const std::vector<Aabb>& element_boxes_of(const Model& model, const SystemState& state,
                                           Workspace& ws, Index c);
 

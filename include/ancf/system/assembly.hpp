@@ -47,6 +47,10 @@ struct Workspace {
   std::vector<Index> candidates;
   ContactSampleResult contact;
   long narrow_phase_samples = 0;  ///< contact samples that reached a kernel (cumulative counter)
+  /// Broad phase, second level: skip cable elements (and cable–cable element pairs) whose
+  /// Bézier hulls provably keep them out of contact (contact_bounds.hpp; same residual and
+  /// matrix, fewer kernel calls). false: element boxes only (the first design).
+  bool hull_broad_phase = true;
   /// Hash of the active contact samples (pair and elements of each, in visiting order) of the
   /// last assemble_residual; 0 when none is active.
   std::uint64_t active_contact_signature = 0;
