@@ -15,6 +15,7 @@
 //                            [--reuse-rate R] [--extrapolate] [--no-reference] [--profile]
 //                            [--pivot-growth]   (KLU refactorization check of 3e3daf4)
 //                            [--pointwise-force] (force-only cable kernel of 3e3daf4)
+//                            [--pointwise-stiffness] (cable stiffness kernel of 3e3daf4)
 //                            [--klu-solve]       (klu_l_solve instead of the extracted factors)
 #include <fmt/format.h>
 #include <algorithm>
@@ -48,13 +49,15 @@ struct Run {
 
 // Old kernels selectable for side-by-side timing (same results up to round-off).
 struct Kernels {
-  ancf::CableForceKernel force = ancf::CableForceKernel::invariant;
+  ancf::CableKernel force = ancf::CableKernel::invariant;
+  ancf::CableKernel stiffness = ancf::CableKernel::invariant;
 };
 
 Run simulate(const ancf::Model& model, const GeneralizedAlphaOptions& options,
              const Kernels& kernels = {}) {
   ancf::MultibodyProblem problem(model);
   problem.set_cable_force_kernel(kernels.force);
+  problem.set_cable_stiffness_kernel(kernels.stiffness);
   GeneralizedAlphaStepper stepper(problem, options);
   stepper.initialize(0.0);
   const Index tip = model.node_coordinate(0, -1);
@@ -75,6 +78,7 @@ void profile_kernels(const ancf::Model& model, const GeneralizedAlphaOptions& op
                      const Kernels& kernels) {
   ancf::MultibodyProblem problem(model);
   problem.set_cable_force_kernel(kernels.force);
+  problem.set_cable_stiffness_kernel(kernels.stiffness);
   GeneralizedAlphaStepper stepper(problem, options);
   stepper.initialize(0.0);
   const auto q = ancf::as_span(stepper.positions()), v = ancf::as_span(stepper.velocities());
@@ -154,12 +158,14 @@ int main(int argc, char** argv) {
     else if (arg == "--klu-solve")
       klu_solve = true;
     else if (arg == "--pointwise-force")
-      kernels.force = ancf::CableForceKernel::pointwise;
+      kernels.force = ancf::CableKernel::pointwise;
+    else if (arg == "--pointwise-stiffness")
+      kernels.stiffness = ancf::CableKernel::pointwise;
     else {
       std::fprintf(stderr,
                    "usage: %s [--elements N] [--step H] [--rho R] [--runs K] [--rtol TOL] "
                    "[--reuse-rate R] [--extrapolate] [--no-reference] [--profile] [--pivot-growth] "
-                   "[--pointwise-force] [--klu-solve]\n",
+                   "[--pointwise-force] [--pointwise-stiffness] [--klu-solve]\n",
                    argv[0]);
       return 2;
     }
