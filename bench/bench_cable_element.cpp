@@ -104,15 +104,23 @@ void BM_ElementForce(benchmark::State& state, Formulation f) {
   run_element(state, f, CableEvalRequest{});
 }
 
-// The same with the pointwise kernel of the matrix path (CableForceKernel::pointwise, the
+// The same with the pointwise kernel of the matrix path (CableKernel::pointwise, the
 // force-only kernel before the invariant one): the ratio of the two is what the residual gains.
 void BM_ElementForcePointwise(benchmark::State& state, Formulation f) {
-  run_element(state, f, CableEvalRequest{.force_kernel = ancf::CableForceKernel::pointwise});
+  run_element(state, f, CableEvalRequest{.force_kernel = ancf::CableKernel::pointwise});
 }
 
 // Force + tangent stiffness ∂f/∂e: what the static Jacobian assembly does per element.
 void BM_ElementForceTangent(benchmark::State& state, Formulation f) {
   run_element(state, f, CableEvalRequest{.stiffness = true});
+}
+
+// The same with the pointwise stiffness kernel (CableKernel::pointwise; undamped sections use
+// the invariant one by default, damped ones always the pointwise one).
+void BM_ElementForceTangentPointwise(benchmark::State& state, Formulation f) {
+  run_element(
+      state, f,
+      CableEvalRequest{.stiffness = true, .stiffness_kernel = ancf::CableKernel::pointwise});
 }
 
 // Force + ∂f/∂e + ∂f/∂ė: what an implicit dynamic step's iteration matrix needs per element.
@@ -142,3 +150,10 @@ BENCHMARK_CAPTURE(BM_ElementForcePointwise, elastic_line_bending,
                   Formulation::elastic_line_bending);
 BENCHMARK_CAPTURE(BM_ElementForcePointwise, green_bending_damped,
                   Formulation::green_bending_damped);
+
+BENCHMARK_CAPTURE(BM_ElementForceTangentPointwise, green_axial, Formulation::green_axial);
+BENCHMARK_CAPTURE(BM_ElementForceTangentPointwise, elastic_line_axial,
+                  Formulation::elastic_line_axial);
+BENCHMARK_CAPTURE(BM_ElementForceTangentPointwise, green_bending, Formulation::green_bending);
+BENCHMARK_CAPTURE(BM_ElementForceTangentPointwise, elastic_line_bending,
+                  Formulation::elastic_line_bending);

@@ -15,6 +15,8 @@
 //                            [--reuse-rate R] [--extrapolate] [--no-reference] [--profile]
 //                            [--pivot-growth]   (KLU refactorization check of 3e3daf4)
 //                            [--pointwise-force] (force-only cable kernel of 3e3daf4)
+//                            [--pointwise-stiffness] (cable stiffness kernel of 3e3daf4)
+//                            [--klu-solve]       (klu_l_solve instead of the extracted factors)
 #include <fmt/format.h>
 #include <algorithm>
 #include <array>
@@ -47,13 +49,15 @@ struct Run {
 
 // Old kernels selectable for side-by-side timing (same results up to round-off).
 struct Kernels {
-  ancf::CableForceKernel force = ancf::CableForceKernel::invariant;
+  ancf::CableKernel force = ancf::CableKernel::invariant;
+  ancf::CableKernel stiffness = ancf::CableKernel::invariant;
 };
 
 Run simulate(const ancf::Model& model, const GeneralizedAlphaOptions& options,
              const Kernels& kernels = {}) {
   ancf::MultibodyProblem problem(model);
   problem.set_cable_force_kernel(kernels.force);
+  problem.set_cable_stiffness_kernel(kernels.stiffness);
   GeneralizedAlphaStepper stepper(problem, options);
   stepper.initialize(0.0);
   const Index tip = model.node_coordinate(0, -1);
@@ -74,12 +78,14 @@ void profile_kernels(const ancf::Model& model, const GeneralizedAlphaOptions& op
                      const Kernels& kernels) {
   ancf::MultibodyProblem problem(model);
   problem.set_cable_force_kernel(kernels.force);
+  problem.set_cable_stiffness_kernel(kernels.stiffness);
   GeneralizedAlphaStepper stepper(problem, options);
   stepper.initialize(0.0);
   const auto q = ancf::as_span(stepper.positions()), v = ancf::as_span(stepper.velocities());
   const auto a = ancf::as_span(stepper.accelerations()), l = ancf::as_span(stepper.multipliers());
   ancf::VecX r(problem.system_size()), values(problem.iteration_pattern().nonzeros());
   ancf::KluSolver klu(problem.iteration_pattern());
+  klu.set_solve(options.klu_solve);
   const auto weights = stepper.iteration_weights(options.step_size, true);
   problem.iteration_matrix(0.0, q, v, a, l, weights, ancf::as_span(values));
   klu.factor(ancf::as_span(values));
@@ -118,7 +124,7 @@ int main(int argc, char** argv) {
   double step = 1e-3, rho = 0.8, rtol = 1e-6, reuse_rate = GeneralizedAlphaOptions{}.max_reuse_rate;
   bool extrapolate = false;
   int runs = 9;
-  bool reference = true, profile = false, pivot_growth = false;
+  bool reference = true, profile = false, pivot_growth = false, klu_solve = false;
   Kernels kernels;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -149,13 +155,17 @@ int main(int argc, char** argv) {
       profile = true;
     else if (arg == "--pivot-growth")
       pivot_growth = true;
+    else if (arg == "--klu-solve")
+      klu_solve = true;
     else if (arg == "--pointwise-force")
-      kernels.force = ancf::CableForceKernel::pointwise;
+      kernels.force = ancf::CableKernel::pointwise;
+    else if (arg == "--pointwise-stiffness")
+      kernels.stiffness = ancf::CableKernel::pointwise;
     else {
       std::fprintf(stderr,
                    "usage: %s [--elements N] [--step H] [--rho R] [--runs K] [--rtol TOL] "
                    "[--reuse-rate R] [--extrapolate] [--no-reference] [--profile] [--pivot-growth] "
-                   "[--pointwise-force]\n",
+                   "[--pointwise-force] [--pointwise-stiffness] [--klu-solve]\n",
                    argv[0]);
       return 2;
     }
@@ -174,6 +184,7 @@ int main(int argc, char** argv) {
   fast.atol_velocity = rtol;
   fast.atol_multiplier = rtol;
   if (pivot_growth) fast.refactor_check = ancf::RefactorCheck::pivot_growth;
+  if (klu_solve) fast.klu_solve = ancf::KluSolve::klu;
 
   std::vector<double> seconds;
   Run last;

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "ancf/core/error.hpp"
+#include "run_lu_factors.hpp"
 
 namespace ancf {
 
@@ -15,6 +16,7 @@ struct KluSolver::Impl {
   klu_l_common common{};
   klu_l_symbolic* symbolic = nullptr;
   klu_l_numeric* numeric = nullptr;
+  detail::RunLuFactors factors;  // KluSolve::extracted
   ~Impl() {
     if (numeric) klu_l_free_numeric(&numeric, &common);
     if (symbolic) klu_l_free_symbolic(&symbolic, &common);
@@ -55,6 +57,7 @@ void KluSolver::analyze() {
   if (k.numeric) klu_l_free_numeric(&k.numeric, &k.common);
   if (k.symbolic) klu_l_free_symbolic(&k.symbolic, &k.common);
   pivots_valid_ = false;
+  extracted_valid_ = false;
   k.symbolic = klu_l_analyze(pattern_.size(), mutable_ptr(pattern_.column_start()),
                              mutable_ptr(pattern_.row_index()), &k.common);
   if (!k.symbolic) {
@@ -75,6 +78,7 @@ void KluSolver::factor(std::span<const double> values) {
   auto* ai = mutable_ptr(pattern_.row_index());
   auto* ax = const_cast<double*>(values.data());
   Impl& k = *impl_;
+  extracted_valid_ = false;
   if (pivots_valid_ && k.numeric) {
     const bool ok = klu_l_refactor(ap, ai, ax, k.symbolic, k.numeric, &k.common) == 1;
     // Refactor keeps the old pivot order, which can be poor once values have changed a lot;
@@ -86,6 +90,7 @@ void KluSolver::factor(std::span<const double> values) {
                    : klu_l_rcond(k.symbolic, k.numeric, &k.common) == 1 && k.common.rcond > 1e-13);
     if (good && k.common.status == KLU_OK) {
       ++refactorizations_;
+      extract(true);
       return;
     }
   }
@@ -104,6 +109,15 @@ void KluSolver::factor(std::span<const double> values) {
   pivots_valid_ = true;
   singular_column_ = -1;
   ++full_factorizations_;
+  extract(false);
+}
+
+void KluSolver::extract(bool refactorized) {
+  if (solve_method_ != KluSolve::extracted) return;
+  Impl& k = *impl_;
+  if (!k.factors.load(k.numeric, k.symbolic, &k.common, refactorized))
+    throw SolverError("KLU factor extraction failed, status " + std::to_string(k.common.status));
+  extracted_valid_ = true;
 }
 
 void KluSolver::solve(std::span<double> rhs) {
@@ -112,6 +126,10 @@ void KluSolver::solve(std::span<double> rhs) {
   if (!k.numeric) throw std::logic_error("KluSolver::solve before a successful factor()");
   if (static_cast<Index>(rhs.size()) != pattern_.size()) {
     throw std::invalid_argument("KluSolver::solve: right-hand side has the wrong size");
+  }
+  if (extracted_valid_) {
+    k.factors.solve(rhs);
+    return;
   }
   if (klu_l_solve(k.symbolic, k.numeric, pattern_.size(), 1, rhs.data(), &k.common) != 1) {
     throw SolverError("KLU solve failed, status " + std::to_string(k.common.status));

@@ -344,9 +344,11 @@ void evaluate_cable_element(const CableSection& section, const CableElementRefer
         evaluate<false, false, kStiffness>(section, ref, e, e_dot, request, out);
     }
   };
-  if (request.stiffness)
+  if (request.stiffness && !damping && request.stiffness_kernel == CableKernel::invariant)
+    detail::evaluate_cable_stiffness_invariant(section, ref, e, request.tangent, out);
+  else if (request.stiffness)
     run.template operator()<true>();
-  else if (!request.damping_matrix && request.force_kernel == CableForceKernel::invariant)
+  else if (!request.damping_matrix && request.force_kernel == CableKernel::invariant)
     detail::evaluate_cable_force_invariant(section, ref, e, e_dot, out);
   else
     run.template operator()<false>();

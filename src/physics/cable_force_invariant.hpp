@@ -1,5 +1,5 @@
 // Force-only cable kernel on the strain invariants (private to the physics layer; used by
-// evaluate_cable_element when neither matrix is requested, CableForceKernel::invariant).
+// evaluate_cable_element when neither matrix is requested, CableKernel::invariant).
 //
 // At a Gauss point the elastic and Kelvin–Voigt energies depend on e only through
 //   s₁ = a·a,  s₂ = a·b,  s₃ = b·b     (a = r_x = E d₁, b = r_xx = E d₂, E = [r_i r_i,x r_j
@@ -23,6 +23,12 @@ namespace ancf::detail {
 /// differentiable at κ = 0); the κ₀-terms are dropped there (a subgradient choice). Shared by both
 /// kernels.
 inline constexpr double kVanishingCurvatureRatio = 1e-8;
+
+/// Force, energy and ∂f/∂e of an element of an undamped section (out.damping untouched); the
+/// tangent as the pointwise kernel defines it (CableTangent), see cable_force_invariant.cpp.
+void evaluate_cable_stiffness_invariant(const CableSection& section,
+                                        const CableElementReference& ref, const Vec12& e,
+                                        CableTangent tangent, CableElementResult& out);
 
 /// Force and energy of one element (out.stiffness and out.damping untouched).
 void evaluate_cable_force_invariant(const CableSection& section, const CableElementReference& ref,

@@ -61,6 +61,8 @@ GeneralizedAlphaStepper::GeneralizedAlphaStepper(SecondOrderProblem& problem,
       controller_(options.controller, 2) {
   klu_.set_refactor_check(options_.refactor_check);
   projector_.set_refactor_check(options_.refactor_check);
+  klu_.set_solve(options_.klu_solve);
+  projector_.set_solve(options_.klu_solve);
   if (!(options_.step_size > 0.0))
     throw std::invalid_argument("generalized-α: the step size must be positive");
   if (options_.formulation == GeneralizedAlphaFormulation::index3 && options_.rho_infinity == 1.0)
@@ -408,8 +410,9 @@ void GeneralizedAlphaStepper::step(double t_limit) {
           fmt::format("generalized-α: Newton failed at t = {:.9g} with h = {:.3e} ({}); last "
                       "weighted increment norm {:.3e}, largest at {}",
                       t_, h,
-                      adaptive() ? std::string("h_min reached")
-                                 : fmt::format("after {} step halvings", options_.max_step_halvings),
+                      adaptive()
+                          ? std::string("h_min reached")
+                          : fmt::format("after {} step halvings", options_.max_step_halvings),
                       norm, where),
           t_, h, where);
     }

@@ -183,8 +183,10 @@ class MatrixContactSink final : public detail::ContactSink {
 template <class Target>
 void add_iteration_matrix_to(const Model& model, const SystemState& state,
                              const IterationWeights& w, Workspace& ws, const Target& t) {
-  const CableEvalRequest request{
-      .stiffness = w.w_q != 0.0, .damping_matrix = w.w_v != 0.0, .tangent = ws.cable_tangent};
+  const CableEvalRequest request{.stiffness = w.w_q != 0.0,
+                                 .damping_matrix = w.w_v != 0.0,
+                                 .tangent = ws.cable_tangent,
+                                 .stiffness_kernel = ws.cable_stiffness_kernel};
   const auto frames = ws.frames_at(model, state.t);
   const auto q = as_span(state.q), v = as_span(state.v);
 

@@ -26,6 +26,13 @@ enum class RefactorCheck {
   diagonal,      ///< min|u_ii|/max|u_ii| > 1e-13 (klu_rcond: O(n))
 };
 
+/// How solve() runs after a factorization.
+enum class KluSolve {
+  klu,        ///< klu_l_solve on KLU's packed factors (3e3daf4 … issue 20)
+  extracted,  ///< the factors copied out once per factorization into sorted column runs
+              ///< (src/core/run_lu_factors.hpp): the same substitutions, vectorized updates
+};
+
 class KluSolver {
  public:
   explicit KluSolver(const SparsityPattern& pattern);
@@ -43,6 +50,8 @@ class KluSolver {
   void reset_pivoting() { pivots_valid_ = false; }
   /// How a refactorization is checked before it is accepted (default pivot_growth).
   void set_refactor_check(RefactorCheck check) { check_ = check; }
+  /// How solve() works (default extracted); takes effect at the next factor().
+  void set_solve(KluSolve method) { solve_method_ = method; }
   /// Solve A x = b in place. Precondition: factor() succeeded.
   void solve(std::span<double> rhs);
 
@@ -65,6 +74,9 @@ class KluSolver {
   const SparsityPattern& pattern_;
   bool pivots_valid_ = false;
   RefactorCheck check_ = RefactorCheck::pivot_growth;
+  KluSolve solve_method_ = KluSolve::extracted;
+  bool extracted_valid_ = false;  // the extracted factors are those of the last factor()
+  void extract(bool refactorized);
   int full_factorizations_ = 0;
   int refactorizations_ = 0;
   int symbolic_analyses_ = 0;

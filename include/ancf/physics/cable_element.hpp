@@ -91,7 +91,7 @@ struct CableElementReference {
     std::array<double, kMaxCableGaussPoints> inv_j0{};  ///< 1/J₀_g
     std::array<double, kMaxCableGaussPoints> kappa0{};  ///< κ₀ (per strain measure)
     /// The same as columns, one Gauss point per column, for the invariant force kernel
-    /// (CableForceKernel): rows of d1, d2 are the entries 1…3 of d1[g], d2[g] (entry 0 is the
+    /// (CableKernel): rows of d1, d2 are the entries 1…3 of d1[g], d2[g] (entry 0 is the
     /// negative of entry 2 for Hermite shapes). Columns ≥ count repeat the last point with
     /// weight 0, so that every column is finite and contributes nothing.
     Eigen::Matrix<double, 3, kMaxCableGaussPoints> lane_d1, lane_d2;
@@ -129,7 +129,7 @@ enum class CableTangent { exact, tension_only };
 ///   (src/physics/cable_force_invariant.hpp); ≈ 3× fewer instructions.
 /// * pointwise: the gradients in (a, b) scattered point by point, as the matrix path does (the
 ///   kernel of 3e3daf4 … issue 20).
-enum class CableForceKernel { invariant, pointwise };
+enum class CableKernel { invariant, pointwise };
 
 /// What to evaluate. Force and energy are always computed.
 struct CableEvalRequest {
@@ -137,7 +137,10 @@ struct CableEvalRequest {
   bool damping_matrix = false;                 ///< ∂f/∂ė
   CableTangent tangent = CableTangent::exact;  ///< what `stiffness` holds (CableTangent)
   /// Kernel of a request without matrices (ignored when a matrix is requested).
-  CableForceKernel force_kernel = CableForceKernel::invariant;
+  CableKernel force_kernel = CableKernel::invariant;
+  /// Kernel of a stiffness request on an undamped section (damped sections: pointwise). The
+  /// invariant one forms ∂f/∂e from the Hessian of the point energies in (s₁, s₂, s₃).
+  CableKernel stiffness_kernel = CableKernel::invariant;
 };
 
 /// Element results. Sign convention: f is the internal force F of M q'' + F = Q, i.e. ∂U/∂e plus

@@ -136,6 +136,8 @@ struct GeneralizedAlphaOptions {
   /// diagonal estimate (default) or KLU's pivot growth, a pass over A and U that was ~20 % of
   /// each refactorization on the benchmark pendulum (studies/README.md).
   RefactorCheck refactor_check = RefactorCheck::diagonal;
+  /// Solve of the factorized iteration matrix (KluSolve; klu = klu_l_solve as before issue 20c).
+  KluSolve klu_solve = KluSolve::extracted;
 
   /// On Newton failure (with a fresh matrix) the step is halved from the last accepted state, at
   /// most this many times in a row; after recovery_steps accepted steps at a reduced size it is

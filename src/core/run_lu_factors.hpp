@@ -1,0 +1,54 @@
+// KLU's factors copied out of its numeric object into column runs, for a faster solve (private
+// to the core layer; KluSolve::extracted of klu_solver.hpp).
+//
+// KLU factors P (R⁻¹A) Q = L U + F (R = diag(Rs) the row scaling, L, U block diagonal on the
+// block-triangular blocks, F the entries above the diagonal blocks; KLU user guide, klu_extract).
+// A x = b is then solved block by block from the last: c = P R⁻¹ b (klu_l_extract gives Rs in the
+// permuted order, verified in test_core); for block k = last … 0:
+// solve L_k U_k y_k = c_k, then c_j −= F_jk y_k for the earlier blocks; x = Q y. The solve here
+// is that of klu_solve with one difference in storage: the row indices of each column of L, U
+// and F are sorted and stored as runs of consecutive rows, so that the update of column j is one
+// contiguous axpy per run (vectorized), not an indexed scatter per entry. For the banded
+// matrices of cables most columns are a single run.
+#pragma once
+
+#include <klu.h>
+
+#include <span>
+#include <vector>
+
+#include "ancf/core/types.hpp"
+
+namespace ancf::detail {
+
+class RunLuFactors {
+ public:
+  /// Copy the factors of `numeric` (klu_l_extract) and sort them into runs. same_structure: the
+  /// factors come from a refactorization (klu_l_refactor keeps the pattern of L, U and F), so only
+  /// the values are moved, through the map of the last full load. Allocates only when the factors
+  /// have more entries than at any earlier load. Returns false if KLU fails.
+  bool load(klu_l_numeric* numeric, klu_l_symbolic* symbolic, klu_l_common* common,
+            bool same_structure);
+  /// Solve A x = b in place (b overwritten with x); precondition: load() succeeded.
+  void solve(std::span<double> b);
+
+ private:
+  // One triangular (or off-diagonal) factor, column by column: the runs of column j are
+  // col_runs[j] … col_runs[j+1]−1; run r covers rows first[r] … first[r]+length[r]−1 with the
+  // values value[offset[r]] …; diagonal entries are not stored (held in `diagonal` for U, 1 for L).
+  // destination[a]: where extracted entry a goes (value index, or −1 − j for the diagonal of
+  // column j).
+  struct Runs {
+    std::vector<Index> col_runs, first, length, offset, destination, order;
+    std::vector<double> value;
+    Index entries = -1;  // extracted entries of the last build
+    void build(Index n, const std::vector<Index>& p, const std::vector<Index>& i);
+    void fill(const std::vector<double>& x, std::vector<double>& diagonal);
+  };
+  Index n_ = 0, blocks_ = 0;
+  std::vector<Index> lp_, li_, up_, ui_, fp_, fi_, perm_row_, perm_col_, block_start_;
+  std::vector<double> lx_, ux_, fx_, scale_, diagonal_, unit_diagonal_, work_;
+  Runs l_, u_, f_;
+};
+
+}  // namespace ancf::detail
