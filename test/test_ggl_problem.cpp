@@ -9,7 +9,9 @@
 #include <random>
 #include <vector>
 
+#include "ancf/system/cable_geometry.hpp"
 #include "ancf/system/ggl_problem.hpp"
+#include "ancf/system/model_builder.hpp"
 #include "dense_matrix.hpp"
 #include "fd_check.hpp"
 #include "multibody_scenes.hpp"
@@ -171,6 +173,46 @@ TEST(GglProblem, ResidualAndJacobianDoNotAllocate) {
   const Point p = random_point(ggl, 3);
   VecX r(ggl.size()), values(ggl.jacobian_pattern().nonzeros());
   ggl.residual(p.t, as_span(p.y), as_span(p.yp), as_span(r));  // warm-up (frame cache etc.)
+  const std::size_t before = g_allocations;
+  for (int k = 0; k < 3; ++k) {
+    ggl.residual(p.t + 0.01 * k, as_span(p.y), as_span(p.yp), as_span(r));
+    ggl.jacobian(p.t + 0.01 * k, as_span(p.y), as_span(p.yp), 100.0, as_span(values));
+  }
+  EXPECT_EQ(g_allocations, before);
+}
+
+// The same with Kirchhoff rods clamped into a body and a rotating frame including twist (the
+// twist rows of rod_twist_constraint.hpp, evaluated with fixed-size kernels).
+TEST(GglProblem, ResidualAndJacobianWithRodTwistRowsDoNotAllocate) {
+  ModelBuilder b;
+  const CableGeometry g = straight_cable(Vec3::Zero(), Vec3(0.1, 0.0, 1.0), 3);
+  RodSection section;
+  section.axial_stiffness = 1e3;
+  section.torsional_stiffness = 0.3;
+  section.bending_stiffness_2 = section.bending_stiffness_3 = 0.5;
+  section.mass_per_length = 0.2;
+  section.polar_inertia = 1e-3;
+  const Index r1 =
+      b.add_rod("r1", g, CableSection{}, section, rod_frames_with_normal(g, Vec3::UnitY()));
+  const Index r2 =
+      b.add_rod("r2", g, CableSection{}, section, rod_frames_with_normal(g, Vec3::UnitY()));
+  RigidBodyInertia in{1.0, Vec3::Zero(), Vec3(0.01, 0.01, 0.02).asDiagonal()};
+  const Index body = b.add_body("disk", in, Vec3(g.nodes.back().head<3>()));
+  DrivenFrame f;
+  f.law = AngleLaw::constant_rate(0.5);
+  const int frame = b.add_driven_frame(f);
+  b.attach_node_to_body("a", {r1, -1}, body);
+  b.align_slope_to_body("a.slope", {r1, -1}, body);
+  b.tie_twist_to_body("a.twist", {r1, -1}, body);
+  b.attach_node_to_frame("f", {r2, -1}, frame);
+  b.align_slope_to_frame("f.slope", {r2, -1}, frame);
+  b.tie_twist_to_frame("f.twist", {r2, -1}, frame);
+  const Model model = b.finalize();
+  ASSERT_EQ(model.twist_rows().size(), 2u);
+  GglProblem ggl(model);
+  const Point p = random_point(ggl, 5);
+  VecX r(ggl.size()), values(ggl.jacobian_pattern().nonzeros());
+  ggl.residual(p.t, as_span(p.y), as_span(p.yp), as_span(r));  // warm-up
   const std::size_t before = g_allocations;
   for (int k = 0; k < 3; ++k) {
     ggl.residual(p.t + 0.01 * k, as_span(p.y), as_span(p.yp), as_span(r));

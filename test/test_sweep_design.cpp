@@ -10,8 +10,8 @@
 #include <set>
 #include <string>
 
-#include "ancf/io/scene_error.hpp"
 #include "ancf/io/scene.hpp"
+#include "ancf/io/scene_error.hpp"
 #include "ancf/io/sweep_design.hpp"
 
 namespace fs = std::filesystem;
