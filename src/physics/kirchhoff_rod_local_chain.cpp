@@ -81,26 +81,49 @@ NodeFrame<S> staged_element_frame(const RodElementHistory& h, const Vec14& e) {
   return {u1, n12, n13, J6(e[13]) + omega};
 }
 
-// x·y for x a jet in (b, a) and y one in (a, t₁), as a jet in (b, a, t₁), by the product rule
-// without first promoting both to 9 variables. The value takes dot()'s operations.
-template <bool S>
-Jet<9, S> dot_ba_at(const V3<Jet<6, S>>& x, const V3<Jet<6, S>>& y) {
-  const std::array<const Jet<6, S>*, 3> xs{&x.x, &x.y, &x.z}, ys{&y.x, &y.y, &y.z};
-  Jet<9, S> c(x.x.v * y.x.v + x.y.v * y.y.v + x.z.v * y.z.v);
+// x·y for x a jet in NX variables placed at [ox, ox + NX) of M and y one in NY at [oy, oy + NY),
+// as a jet in M, by the product rule without first promoting both to M variables. The value takes
+// dot()'s operations (x_k y_k = y_k x_k exactly).
+template <int M, int NX, int NY, bool S>
+Jet<M, S> mixed_dot(const V3<Jet<NX, S>>& x, int ox, const V3<Jet<NY, S>>& y, int oy) {
+  const std::array<const Jet<NX, S>*, 3> xs{&x.x, &x.y, &x.z};
+  const std::array<const Jet<NY, S>*, 3> ys{&y.x, &y.y, &y.z};
+  Jet<M, S> c(x.x.v * y.x.v + x.y.v * y.y.v + x.z.v * y.z.v);
   for (int k = 0; k < 3; ++k) {
-    const Jet<6, S>&xk = *xs[k], &yk = *ys[k];
-    c.g.template head<6>() += yk.v * xk.g;
-    c.g.template tail<6>() += xk.v * yk.g;
+    const Jet<NX, S>& xk = *xs[k];
+    const Jet<NY, S>& yk = *ys[k];
+    c.g.template segment<NX>(ox) += yk.v * xk.g;
+    c.g.template segment<NY>(oy) += xk.v * yk.g;
     if constexpr (S) {
-      c.h.template topLeftCorner<6, 6>() += yk.v * xk.h;
-      c.h.template bottomRightCorner<6, 6>() += xk.v * yk.h;
-      for (int j = 0; j < 6; ++j) {
-        c.h.template block<6, 1>(0, 3 + j) += yk.g[j] * xk.g;
-        c.h.template block<6, 1>(3, j) += xk.g[j] * yk.g;
-      }
+      c.h.template block<NX, NX>(ox, ox) += yk.v * xk.h;
+      c.h.template block<NY, NY>(oy, oy) += xk.v * yk.h;
+      for (int j = 0; j < NY; ++j) c.h.template block<NX, 1>(ox, oy + j) += yk.g[j] * xk.g;
+      for (int j = 0; j < NX; ++j) c.h.template block<NY, 1>(oy, ox + j) += xk.g[j] * yk.g;
     }
   }
   return c;
+}
+
+// a × b for a, b the independent variables at [3, 6) and [0, 3) of a jet in (b, a): bilinear, so
+// its derivatives are written out. The value takes cross()'s operations.
+template <bool S>
+V3<Jet<6, S>> cross_of_variables(const V3<double>& a, const V3<double>& b) {
+  constexpr int ob = 0, oa = 3;
+  const std::array<double, 3> av{a.x, a.y, a.z}, bv{b.x, b.y, b.z};
+  std::array<Jet<6, S>, 3> c;
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3, k = (i + 2) % 3;  // c_i = a_j b_k − a_k b_j
+    c[i] = Jet<6, S>(av[j] * bv[k] - av[k] * bv[j]);
+    c[i].g[oa + j] = bv[k];
+    c[i].g[oa + k] = -bv[j];
+    c[i].g[ob + k] = av[j];
+    c[i].g[ob + j] = -av[k];
+    if constexpr (S) {
+      c[i].h(oa + j, ob + k) = c[i].h(ob + k, oa + j) = 1.0;
+      c[i].h(oa + k, ob + j) = c[i].h(ob + j, oa + k) = -1.0;
+    }
+  }
+  return {c[0], c[1], c[2]};
 }
 
 // The strains (ε, K₁, K₂, K₃) at a point as jets in y = (b, a, t₁, α₁, ζ). The operations and
@@ -126,16 +149,17 @@ std::array<Jet<kLocal, S>, 4> staged_point_strains(const PointData& pd, const No
   const J3 na = sqrt(saa);
   const V3<J3> g = scale(1.0 / na, a);
   // (b, a)
-  const V3<J6> a_ba = promote<6>(a, 3), b_ba = variables<J6>(bd, 0);
-  const V3<J6> kappa = scale(promote<6>(1.0 / saa, 3), cross(a_ba, b_ba));
-  // (a, t₁)
-  const V3<J6> t1_at = promote<6>(f.t1, 3), g_at = promote<6>(g, 0);
-  const J6 ic = checked_inverse_denominator(1.0 + dot(t1_at, g_at), "centreline tangent");
-  const V3<J6> g2 = sr_column(t1_at, promote<6>(f.n2, 3), g_at, ic),
-               g3 = sr_column(t1_at, promote<6>(f.n3, 3), g_at, ic);
+  const V3<J6> kappa = scale(promote<6>(1.0 / saa, 3), cross_of_variables<S>(ad, bd));
+  // (a, t₁): the SR columns sr_column(t̂₁, n, g, ic) = n − ((n·g) ic)(g + t̂₁)
+  const V3<J6> t1_at = promote<6>(f.t1, 3);
+  const J6 ic =
+      checked_inverse_denominator(1.0 + mixed_dot<6>(f.t1, 3, g, 0), "centreline tangent");
+  const V3<J6> g_plus_t1 = promote<6>(g, 0) + t1_at;
+  const V3<J6> g2 = promote<6>(f.n2, 3) - scale(mixed_dot<6>(f.n2, 3, g, 0) * ic, g_plus_t1),
+               g3 = promote<6>(f.n3, 3) - scale(mixed_dot<6>(f.n3, 3, g, 0) * ic, g_plus_t1);
   // (b, a, t₁)
-  const J9 k2 = dot_ba_at(kappa, g2), k3 = dot_ba_at(kappa, g3);
-  const J9 sr_twist = dot_ba_at(kappa, t1_at) * promote<9>(ic, 3);
+  const J9 k2 = mixed_dot<9>(kappa, 0, g2, 3), k3 = mixed_dot<9>(kappa, 0, g3, 3);
+  const J9 sr_twist = mixed_dot<9>(t1_at, 3, kappa, 0) * promote<9>(ic, 3);
   // the twist, by hand
   const double psi = (1.0 - xi) * alpha1 + xi * zeta;
   const double c = std::cos(psi), s = std::sin(psi);
