@@ -84,22 +84,28 @@ NodeFrame<S> staged_element_frame(const RodElementHistory& h, const Vec14& e) {
 // x·y for x a jet in NX variables placed at [ox, ox + NX) of M and y one in NY at [oy, oy + NY),
 // as a jet in M, by the product rule without first promoting both to M variables. The value takes
 // dot()'s operations (x_k y_k = y_k x_k exactly).
-template <int M, int NX, int NY, bool S>
-Jet<M, S> mixed_dot(const V3<Jet<NX, S>>& x, int ox, const V3<Jet<NY, S>>& y, int oy) {
+template <int M, int ox, int oy, int NX, int NY, bool S>
+Jet<M, S> mixed_dot(const V3<Jet<NX, S>>& x, const V3<Jet<NY, S>>& y) {
   const std::array<const Jet<NX, S>*, 3> xs{&x.x, &x.y, &x.z};
   const std::array<const Jet<NY, S>*, 3> ys{&y.x, &y.y, &y.z};
   Jet<M, S> c(x.x.v * y.x.v + x.y.v * y.y.v + x.z.v * y.z.v);
+  Eigen::Matrix<double, NX, 3> xg;
+  Eigen::Matrix<double, NY, 3> yg;
   for (int k = 0; k < 3; ++k) {
-    const Jet<NX, S>& xk = *xs[k];
-    const Jet<NY, S>& yk = *ys[k];
-    c.g.template segment<NX>(ox) += yk.v * xk.g;
-    c.g.template segment<NY>(oy) += xk.v * yk.g;
-    if constexpr (S) {
-      c.h.template block<NX, NX>(ox, ox) += yk.v * xk.h;
-      c.h.template block<NY, NY>(oy, oy) += xk.v * yk.h;
-      for (int j = 0; j < NY; ++j) c.h.template block<NX, 1>(ox, oy + j) += yk.g[j] * xk.g;
-      for (int j = 0; j < NX; ++j) c.h.template block<NY, 1>(oy, ox + j) += xk.g[j] * yk.g;
+    xg.col(k) = xs[k]->g;
+    yg.col(k) = ys[k]->g;
+  }
+  const Eigen::Vector3d xv(x.x.v, x.y.v, x.z.v), yv(y.x.v, y.y.v, y.z.v);
+  c.g.template segment<NX>(ox) += xg * yv;
+  c.g.template segment<NY>(oy) += yg * xv;
+  if constexpr (S) {
+    for (int k = 0; k < 3; ++k) {
+      c.h.template block<NX, NX>(ox, ox) += yv[k] * xs[k]->h;
+      c.h.template block<NY, NY>(oy, oy) += xv[k] * ys[k]->h;
     }
+    const Eigen::Matrix<double, NX, NY> p = xg.lazyProduct(yg.transpose());  // Σ x_k′ y_k′ᵀ
+    c.h.template block<NX, NY>(ox, oy) += p;
+    c.h.template block<NY, NX>(oy, ox) += p.transpose();
   }
   return c;
 }
@@ -153,13 +159,13 @@ std::array<Jet<kLocal, S>, 4> staged_point_strains(const PointData& pd, const No
   // (a, t₁): the SR columns sr_column(t̂₁, n, g, ic) = n − ((n·g) ic)(g + t̂₁)
   const V3<J6> t1_at = promote<6>(f.t1, 3);
   const J6 ic =
-      checked_inverse_denominator(1.0 + mixed_dot<6>(f.t1, 3, g, 0), "centreline tangent");
+      checked_inverse_denominator(1.0 + mixed_dot<6, 3, 0>(f.t1, g), "centreline tangent");
   const V3<J6> g_plus_t1 = promote<6>(g, 0) + t1_at;
-  const V3<J6> g2 = promote<6>(f.n2, 3) - scale(mixed_dot<6>(f.n2, 3, g, 0) * ic, g_plus_t1),
-               g3 = promote<6>(f.n3, 3) - scale(mixed_dot<6>(f.n3, 3, g, 0) * ic, g_plus_t1);
+  const V3<J6> g2 = promote<6>(f.n2, 3) - scale(mixed_dot<6, 3, 0>(f.n2, g) * ic, g_plus_t1),
+               g3 = promote<6>(f.n3, 3) - scale(mixed_dot<6, 3, 0>(f.n3, g) * ic, g_plus_t1);
   // (b, a, t₁)
-  const J9 k2 = mixed_dot<9>(kappa, 0, g2, 3), k3 = mixed_dot<9>(kappa, 0, g3, 3);
-  const J9 sr_twist = mixed_dot<9>(t1_at, 3, kappa, 0) * promote<9>(ic, 3);
+  const J9 k2 = mixed_dot<9, 0, 3>(kappa, g2), k3 = mixed_dot<9, 0, 3>(kappa, g3);
+  const J9 sr_twist = mixed_dot<9, 3, 0>(t1_at, kappa) * promote<9>(ic, 3);
   // the twist, by hand
   const double psi = (1.0 - xi) * alpha1 + xi * zeta;
   const double c = std::cos(psi), s = std::sin(psi);
