@@ -144,7 +144,7 @@ TEST(KirchhoffRodStatics, QuarterCircleOutOfPlaneTipForce) {
   // non-linearity at F R²/EI = 1e-7 is far below.
   EXPECT_LT(err.back(), err.front() / 3.9 / 3.9);  // at least second order over two halvings
   EXPECT_LT(err.back(), 2e-3);
-  // Where the second order comes from, at other GJ/EI. Torsion-dominated (GJ/EI = 10⁻², 99.7 %
+  // Where the second order comes from, at other GJ/EI. Torsion-dominated (GJ/EI = 10⁻², 97.8 %
   // of δ from torsion) the piecewise-constant ψ_x makes K₁ O(h) and δ O(h²). Torsion-rigid
   // (10⁶) it is O(h²) too, and of the same size: the curved element must keep K₁ = K₁⁰ along
   // itself as it bends out of plane, and a linear ψ cannot follow the varying SR twist rate
