@@ -1,14 +1,15 @@
 // The Kirchhoff rod's force, tangent and damping matrix by a two-level chain rule
-// (RodKernel::local_chain). The strains at a Gauss point depend on the 14 element coordinates
-// only through 11 local variables
-//   y = (a = r_x, b = r_xx, t₁, α₁, ζ) ∈ R¹¹,
+// (RodKernel::local_chain; docs/rod.md, "Derivatives"). The strains at a Gauss point depend on
+// the 14 element coordinates only through 11 local variables
+//   y = (b = r_xx, a = r_x, t₁, α₁, ζ) ∈ R¹¹,
 // all linear in e except ζ = α₂ + ω(t₁, t₂). So with B = ∂y/∂e (the point's Hermite
 // derivatives, identities, and ∇ζ as last row) and H_ζ = ∂²ζ/∂e² (on t₁, t₂ only):
 //   ∇ₑs = Bᵀ∇_y s,   ∇ₑ²s = Bᵀ(∇_y² s)B + (∂s/∂ζ) H_ζ.
-// Jets run in the 11 local variables per point and in (t₁, t₂) once per element for ω, instead
-// of in all 14 coordinates through every operation (RodKernel::element_jets). The values use the
-// same operations as that kernel (kirchhoff_rod_strains.hpp), so energy and strains are bitwise
-// equal and the derivatives agree to round-off (test_kirchhoff_rod_element).
+// Inside a point each intermediate is a jet in only the variables it depends on (3, 6 or 9 of
+// y; the twist ψ by hand), and ω is a jet in (t₁, t₂) once per element, instead of jets in all
+// 14 coordinates through every operation (RodKernel::element_jets). The values use the same
+// operations as that kernel (kirchhoff_rod_strains.hpp), so energy and strains are bitwise equal
+// and the derivatives agree to round-off (test_kirchhoff_rod_element).
 #include "kirchhoff_rod_local_chain.hpp"
 
 #include <array>
