@@ -172,12 +172,10 @@ std::array<Jet<kLocal, S>, 4> staged_point_strains(const PointData& pd, const No
   const double c = std::cos(psi), s = std::sin(psi);
   const double k1 = (zeta - alpha1) * (1.0 / pd.length) - sr_twist.v;
   std::array<JL, 4> out;
-  out[0] = promote<kLocal>(na, kA);
   out[0].v = na.v * ij - 1.0;
-  out[0].g *= ij;
-  out[1] = promote<kLocal>(sr_twist, 0);
+  out[0].g.template segment<3>(kA) = ij * na.g;
   out[1].v = k1 * ij;
-  out[1].g *= -ij;
+  out[1].g.template head<9>() = -ij * sr_twist.g;
   out[1].g[kAlpha1] = -ij / pd.length;
   out[1].g[kZeta] = ij / pd.length;
   const double kk2 = (c * k2.v + s * k3.v) * ij, kk3 = (c * k3.v - s * k2.v) * ij;
@@ -192,8 +190,8 @@ std::array<Jet<kLocal, S>, 4> staged_point_strains(const PointData& pd, const No
   out[3].g[kAlpha1] = -(1.0 - xi) * kk2;
   out[3].g[kZeta] = -xi * kk2;
   if constexpr (S) {
-    out[0].h *= ij;
-    out[1].h *= -ij;
+    out[0].h.template block<3, 3>(kA, kA) = ij * na.h;
+    out[1].h.template topLeftCorner<9, 9>() = -ij * sr_twist.h;
     out[2].h.template topLeftCorner<9, 9>() = ij * (c * k2.h + s * k3.h);
     out[3].h.template topLeftCorner<9, 9>() = ij * (c * k3.h - s * k2.h);
     const double pa = 1.0 - xi, pz = xi;  // ∂ψ/∂α₁, ∂ψ/∂ζ
