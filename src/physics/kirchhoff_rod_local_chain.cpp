@@ -298,7 +298,8 @@ void evaluate(const RodSection& section, const RodElementReference& ref,
       f.noalias() += (w * sigma) * s[k].g;
       if constexpr (kSecond) {
         if (stiffness) {
-          k_local.noalias() += (w * stiff[k]) * s[k].g * s[k].g.transpose();
+          const LocalVec wg = (w * stiff[k]) * s[k].g;
+          for (int j = 0; j < kLocal; ++j) k_local.col(j) += s[k].g[j] * wg;  // w EA_k ∇s ∇sᵀ
           k_local.noalias() += (w * sigma) * s[k].h;
           zeta_stress += w * sigma * s[k].g[kZeta];
           if (damped) {
