@@ -1,14 +1,15 @@
 // The Kirchhoff rod's force, tangent and damping matrix by a two-level chain rule
-// (RodKernel::local_chain). The strains at a Gauss point depend on the 14 element coordinates
-// only through 11 local variables
-//   y = (a = r_x, b = r_xx, t₁, α₁, ζ) ∈ R¹¹,
+// (RodKernel::local_chain; docs/rod.md, "Derivatives"). The strains at a Gauss point depend on
+// the 14 element coordinates only through 11 local variables
+//   y = (b = r_xx, a = r_x, t₁, α₁, ζ) ∈ R¹¹,
 // all linear in e except ζ = α₂ + ω(t₁, t₂). So with B = ∂y/∂e (the point's Hermite
 // derivatives, identities, and ∇ζ as last row) and H_ζ = ∂²ζ/∂e² (on t₁, t₂ only):
 //   ∇ₑs = Bᵀ∇_y s,   ∇ₑ²s = Bᵀ(∇_y² s)B + (∂s/∂ζ) H_ζ.
-// Jets run in the 11 local variables per point and in (t₁, t₂) once per element for ω, instead
-// of in all 14 coordinates through every operation (RodKernel::element_jets). The values use the
-// same operations as that kernel (kirchhoff_rod_strains.hpp), so energy and strains are bitwise
-// equal and the derivatives agree to round-off (test_kirchhoff_rod_element).
+// Inside a point each intermediate is a jet in only the variables it depends on (3, 6 or 9 of
+// y; the twist ψ by hand), and ω is a jet in (t₁, t₂) once per element, instead of jets in all
+// 14 coordinates through every operation (RodKernel::element_jets). The values use the same
+// operations as that kernel (kirchhoff_rod_strains.hpp), so energy and strains are bitwise equal
+// and the derivatives agree to round-off (test_kirchhoff_rod_element).
 #include "kirchhoff_rod_local_chain.hpp"
 
 #include <array>
@@ -81,26 +82,55 @@ NodeFrame<S> staged_element_frame(const RodElementHistory& h, const Vec14& e) {
   return {u1, n12, n13, J6(e[13]) + omega};
 }
 
-// x·y for x a jet in (b, a) and y one in (a, t₁), as a jet in (b, a, t₁), by the product rule
-// without first promoting both to 9 variables. The value takes dot()'s operations.
-template <bool S>
-Jet<9, S> dot_ba_at(const V3<Jet<6, S>>& x, const V3<Jet<6, S>>& y) {
-  const std::array<const Jet<6, S>*, 3> xs{&x.x, &x.y, &x.z}, ys{&y.x, &y.y, &y.z};
-  Jet<9, S> c(x.x.v * y.x.v + x.y.v * y.y.v + x.z.v * y.z.v);
+// x·y for x a jet in NX variables placed at [ox, ox + NX) of M and y one in NY at [oy, oy + NY),
+// as a jet in M, by the product rule without first promoting both to M variables. The value takes
+// dot()'s operations (x_k y_k = y_k x_k exactly).
+template <int M, int ox, int oy, int NX, int NY, bool S>
+Jet<M, S> mixed_dot(const V3<Jet<NX, S>>& x, const V3<Jet<NY, S>>& y) {
+  const std::array<const Jet<NX, S>*, 3> xs{&x.x, &x.y, &x.z};
+  const std::array<const Jet<NY, S>*, 3> ys{&y.x, &y.y, &y.z};
+  Jet<M, S> c(x.x.v * y.x.v + x.y.v * y.y.v + x.z.v * y.z.v);
+  Eigen::Matrix<double, NX, 3> xg;
+  Eigen::Matrix<double, NY, 3> yg;
   for (int k = 0; k < 3; ++k) {
-    const Jet<6, S>&xk = *xs[k], &yk = *ys[k];
-    c.g.template head<6>() += yk.v * xk.g;
-    c.g.template tail<6>() += xk.v * yk.g;
-    if constexpr (S) {
-      c.h.template topLeftCorner<6, 6>() += yk.v * xk.h;
-      c.h.template bottomRightCorner<6, 6>() += xk.v * yk.h;
-      for (int j = 0; j < 6; ++j) {
-        c.h.template block<6, 1>(0, 3 + j) += yk.g[j] * xk.g;
-        c.h.template block<6, 1>(3, j) += xk.g[j] * yk.g;
-      }
+    xg.col(k) = xs[k]->g;
+    yg.col(k) = ys[k]->g;
+  }
+  const Eigen::Vector3d xv(x.x.v, x.y.v, x.z.v), yv(y.x.v, y.y.v, y.z.v);
+  c.g.template segment<NX>(ox) += xg * yv;
+  c.g.template segment<NY>(oy) += yg * xv;
+  if constexpr (S) {
+    for (int k = 0; k < 3; ++k) {
+      c.h.template block<NX, NX>(ox, ox) += yv[k] * xs[k]->h;
+      c.h.template block<NY, NY>(oy, oy) += xv[k] * ys[k]->h;
     }
+    const Eigen::Matrix<double, NX, NY> p = xg.lazyProduct(yg.transpose());  // Σ x_k′ y_k′ᵀ
+    c.h.template block<NX, NY>(ox, oy) += p;
+    c.h.template block<NY, NX>(oy, ox) += p.transpose();
   }
   return c;
+}
+
+// a × b for a, b the independent variables at [3, 6) and [0, 3) of a jet in (b, a): bilinear, so
+// its derivatives are written out. The value takes cross()'s operations.
+template <bool S>
+V3<Jet<6, S>> cross_of_variables(const V3<double>& a, const V3<double>& b) {
+  constexpr int ob = 0, oa = 3;
+  const std::array<double, 3> av{a.x, a.y, a.z}, bv{b.x, b.y, b.z};
+  std::array<Jet<6, S>, 3> c;
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3, k = (i + 2) % 3;  // c_i = a_j b_k − a_k b_j
+    c[i] = Jet<6, S>(av[j] * bv[k] - av[k] * bv[j]);
+    c[i].g[oa + j] = bv[k];
+    c[i].g[oa + k] = -bv[j];
+    c[i].g[ob + k] = av[j];
+    c[i].g[ob + j] = -av[k];
+    if constexpr (S) {
+      c[i].h(oa + j, ob + k) = c[i].h(ob + k, oa + j) = 1.0;
+      c[i].h(oa + k, ob + j) = c[i].h(ob + j, oa + k) = -1.0;
+    }
+  }
+  return {c[0], c[1], c[2]};
 }
 
 // The strains (ε, K₁, K₂, K₃) at a point as jets in y = (b, a, t₁, α₁, ζ). The operations and
@@ -126,27 +156,26 @@ std::array<Jet<kLocal, S>, 4> staged_point_strains(const PointData& pd, const No
   const J3 na = sqrt(saa);
   const V3<J3> g = scale(1.0 / na, a);
   // (b, a)
-  const V3<J6> a_ba = promote<6>(a, 3), b_ba = variables<J6>(bd, 0);
-  const V3<J6> kappa = scale(promote<6>(1.0 / saa, 3), cross(a_ba, b_ba));
-  // (a, t₁)
-  const V3<J6> t1_at = promote<6>(f.t1, 3), g_at = promote<6>(g, 0);
-  const J6 ic = checked_inverse_denominator(1.0 + dot(t1_at, g_at), "centreline tangent");
-  const V3<J6> g2 = sr_column(t1_at, promote<6>(f.n2, 3), g_at, ic),
-               g3 = sr_column(t1_at, promote<6>(f.n3, 3), g_at, ic);
+  const V3<J6> kappa = scale(promote<6>(1.0 / saa, 3), cross_of_variables<S>(ad, bd));
+  // (a, t₁): the SR columns sr_column(t̂₁, n, g, ic) = n − ((n·g) ic)(g + t̂₁)
+  const V3<J6> t1_at = promote<6>(f.t1, 3);
+  const J6 ic =
+      checked_inverse_denominator(1.0 + mixed_dot<6, 3, 0>(f.t1, g), "centreline tangent");
+  const V3<J6> g_plus_t1 = promote<6>(g, 0) + t1_at;
+  const V3<J6> g2 = promote<6>(f.n2, 3) - scale(mixed_dot<6, 3, 0>(f.n2, g) * ic, g_plus_t1),
+               g3 = promote<6>(f.n3, 3) - scale(mixed_dot<6, 3, 0>(f.n3, g) * ic, g_plus_t1);
   // (b, a, t₁)
-  const J9 k2 = dot_ba_at(kappa, g2), k3 = dot_ba_at(kappa, g3);
-  const J9 sr_twist = dot_ba_at(kappa, t1_at) * promote<9>(ic, 3);
+  const J9 k2 = mixed_dot<9, 0, 3>(kappa, g2), k3 = mixed_dot<9, 0, 3>(kappa, g3);
+  const J9 sr_twist = mixed_dot<9, 3, 0>(t1_at, kappa) * promote<9>(ic, 3);
   // the twist, by hand
   const double psi = (1.0 - xi) * alpha1 + xi * zeta;
   const double c = std::cos(psi), s = std::sin(psi);
   const double k1 = (zeta - alpha1) * (1.0 / pd.length) - sr_twist.v;
   std::array<JL, 4> out;
-  out[0] = promote<kLocal>(na, kA);
   out[0].v = na.v * ij - 1.0;
-  out[0].g *= ij;
-  out[1] = promote<kLocal>(sr_twist, 0);
+  out[0].g.template segment<3>(kA) = ij * na.g;
   out[1].v = k1 * ij;
-  out[1].g *= -ij;
+  out[1].g.template head<9>() = -ij * sr_twist.g;
   out[1].g[kAlpha1] = -ij / pd.length;
   out[1].g[kZeta] = ij / pd.length;
   const double kk2 = (c * k2.v + s * k3.v) * ij, kk3 = (c * k3.v - s * k2.v) * ij;
@@ -161,8 +190,8 @@ std::array<Jet<kLocal, S>, 4> staged_point_strains(const PointData& pd, const No
   out[3].g[kAlpha1] = -(1.0 - xi) * kk2;
   out[3].g[kZeta] = -xi * kk2;
   if constexpr (S) {
-    out[0].h *= ij;
-    out[1].h *= -ij;
+    out[0].h.template block<3, 3>(kA, kA) = ij * na.h;
+    out[1].h.template topLeftCorner<9, 9>() = -ij * sr_twist.h;
     out[2].h.template topLeftCorner<9, 9>() = ij * (c * k2.h + s * k3.h);
     out[3].h.template topLeftCorner<9, 9>() = ij * (c * k3.h - s * k2.h);
     const double pa = 1.0 - xi, pz = xi;  // ∂ψ/∂α₁, ∂ψ/∂ζ
@@ -269,7 +298,8 @@ void evaluate(const RodSection& section, const RodElementReference& ref,
       f.noalias() += (w * sigma) * s[k].g;
       if constexpr (kSecond) {
         if (stiffness) {
-          k_local.noalias() += (w * stiff[k]) * s[k].g * s[k].g.transpose();
+          const LocalVec wg = (w * stiff[k]) * s[k].g;
+          for (int j = 0; j < kLocal; ++j) k_local.col(j) += s[k].g[j] * wg;  // w EA_k ∇s ∇sᵀ
           k_local.noalias() += (w * sigma) * s[k].h;
           zeta_stress += w * sigma * s[k].g[kZeta];
           if (damped) {

@@ -25,15 +25,19 @@ struct Jet {
   // is not copied with 8N² dead bytes on every operation (measured: ~3× on the rod's force).
   using Hess =
       std::conditional_t<kSecond, Eigen::Matrix<double, N, N>, Eigen::Matrix<double, 1, 1>>;
-  double v = 0.0;
-  Grad g = Grad::Zero();
-  Hess h;  // valid only if kSecond (left uninitialised otherwise)
+  double v;
+  Grad g;
+  Hess h;  // valid only if kSecond (a zero placeholder otherwise)
 
-  Jet() {
-    if constexpr (kSecond) h.setZero();
-  }
+  Jet() : Jet(0.0) {}
   Jet(double value) : v(value) {  // NOLINT: implicit constants are the point of a scalar type
-    if constexpr (kSecond) h.setZero();
+    g.setZero();
+    h.setZero();
+  }
+  /// Value, gradient and Hessian all left for the caller to fill (the operations below).
+  struct Uninitialised {};
+  explicit Jet(Uninitialised) {
+    if constexpr (!kSecond) h.setZero();  // the 1×1 placeholder: one store, no warning
   }
   /// Independent variable number i with value x.
   static Jet variable(double x, int i) {
@@ -116,7 +120,7 @@ Jet<N, S> operator/(Jet<N, S> a, double s) {
 // (ab)'' = a b'' + b a'' + a' b'ᵀ + b' a'ᵀ
 template <int N, bool S>
 Jet<N, S> operator*(const Jet<N, S>& a, const Jet<N, S>& b) {
-  Jet<N, S> c;
+  Jet<N, S> c{typename Jet<N, S>::Uninitialised{}};
   c.v = a.v * b.v;
   c.g = a.v * b.g + b.v * a.g;
   if constexpr (S) {
@@ -129,7 +133,7 @@ Jet<N, S> operator*(const Jet<N, S>& a, const Jet<N, S>& b) {
 /// f(u) from f(u.v), f′ and f″: (f∘u)″ = f′ u″ + f″ u′u′ᵀ.
 template <int N, bool S>
 Jet<N, S> chain(const Jet<N, S>& u, double f, double f1, double f2) {
-  Jet<N, S> c;
+  Jet<N, S> c{typename Jet<N, S>::Uninitialised{}};
   c.v = f;
   c.g = f1 * u.g;
   if constexpr (S) {
@@ -173,7 +177,7 @@ template <int N, bool S>
 Jet<N, S> atan2(const Jet<N, S>& y, const Jet<N, S>& x) {
   const double r2 = x.v * x.v + y.v * y.v, r4 = r2 * r2;
   const double fx = -y.v / r2, fy = x.v / r2;
-  Jet<N, S> c;
+  Jet<N, S> c{typename Jet<N, S>::Uninitialised{}};
   c.v = std::atan2(y.v, x.v);
   c.g = fx * x.g + fy * y.g;
   if constexpr (S) {
