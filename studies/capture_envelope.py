@@ -148,7 +148,7 @@ def main():
                              is not None for x in gx] for y in gy], dtype=float)
             ax.contourf(gx, gy, bad, levels=[0.5, 1.5], colors=["0.85"])
             ax.contour(gx, gy, bad, levels=[0.5], colors="0.5", linewidths=0.8)
-            pts, ind = [], []
+            pts, locked, offset = [], [], []
             for r in rows:
                 if num(r["mu"]) != mu:
                     continue
@@ -160,19 +160,32 @@ def main():
                 kind, label = classify(r)
                 style = {"centred": ("o", "tab:green"), "offcentre": ("^", "tab:orange"),
                          "nolock": ("x", "tab:red"), "run failed": ("s", "0.5")}[kind]
-                ax.plot(x, y, style[0], color=style[1], ms=10, mew=2.5)
-                if kind in ("centred", "offcentre", "nolock"):
-                    pts.append((x, y))
-                    ind.append(1.0 if kind == "centred" else 0.0)
-                if kind != "centred":
-                    extra = f"\n{num(r['events.final_tilt_deg']):.1f}°" if kind == "offcentre" else ""
-                    ax.annotate(label + extra, (x, y), textcoords="offset points", xytext=(0, -22),
+                ax.plot(x, y, style[0], color=style[1], ms=9, mew=2.5)
+                if kind == "run failed" or kind == "nolock":
+                    ax.annotate(label, (x, y), textcoords="offset points", xytext=(0, -16),
                                 ha="center", fontsize=6.5)
-            if len(pts) >= 3 and 0.0 < sum(ind) < len(ind):
+                else:
+                    off = 1e3 * num(r["events.final_lateral_offset_m"])
+                    ax.annotate(f"{off:.1f}", (x, y), textcoords="offset points", xytext=(0, -14),
+                                ha="center", fontsize=6.5)
+                    offset.append(off)
+                if kind != "run failed":
+                    pts.append((x, y))
+                    locked.append(0.0 if kind == "nolock" else 1.0)
+                    if kind == "nolock":
+                        offset.append(math.nan)
+            if len(pts) >= 3:
                 p = np.array(pts)
                 try:
                     tri = mtri.Triangulation(p[:, 0], p[:, 1])
-                    ax.tricontour(tri, ind, levels=[0.5], colors="k", linestyles="--")
+                    if 0.0 < sum(locked) < len(locked):
+                        ax.tricontour(tri, locked, levels=[0.5], colors="k", linewidths=1.8)
+                    off = np.array(offset)
+                    ok = np.isfinite(off)  # the centring limit over the locked cases only
+                    if ok.sum() >= 3 and off[ok].min() < CENTRED_MM < off[ok].max():
+                        ax.tricontour(mtri.Triangulation(p[ok, 0], p[ok, 1]), off[ok],
+                                      levels=[CENTRED_MM], colors="tab:blue", linestyles="--",
+                                      linewidths=1.2)
                 except (RuntimeError, ValueError):
                     pass  # collinear cases: no triangulation, no boundary drawn
             name = "in the plane of the offset (+: knob towards +x)" if comp == "x" else \
@@ -183,9 +196,10 @@ def main():
             ax.set_xlim(*xlim)
             ax.set_ylim(gy[0], gy[-1])
             ax.grid(alpha=0.3)
-    fig.suptitle("Capture envelope: green captured and centred, orange locked off-centre, red not locked,\n"
-                 "grey square run failed; grey area: impossible start; dashed: boundary of capture",
-                 fontsize=10)
+    fig.suptitle("Capture envelope: green locked and centred (axis within 2 mm at h/2), orange locked "
+                 "off-centre, red not locked, grey square run failed;\nlabels: final axis offset at "
+                 "h/2 [mm]; grey area: impossible start; black line: boundary of capture (lock), blue "
+                 "dashed: 2 mm centring limit (linear between cases)", fontsize=9)
     fig.tight_layout()
     fig.savefig(png, dpi=110)
     print("wrote", png)
