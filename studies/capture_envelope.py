@@ -5,8 +5,9 @@ tilt_axis). Each case is a marker at its root offset dx (x) and its tilt compone
 of a friction value the tilt in the plane of the offset (knob towards +x positive, beta = 0/180),
 right panel the tilt across it (towards +y positive, beta = 90/270); untilted cases are in both.
 Filled circle = captured and centred (locked, axis within CENTRED_MM of the ring axis at h/2 at
-the end), triangle = locked off-centre, cross = not locked (label: why), grey square = the run
-failed (status). Grey area: impossible starts (studies/capture_geometry.py: shaft outside a ring
+the end), triangle = locked off-centre, cross = not locked (label: why) or a pole that left a ring
+bore on the way (the rings have no contact shape, so such a run is not physical after that),
+grey square = the run failed (status). Grey area: impossible starts (studies/capture_geometry.py: shaft outside a ring
 bore or a rope inside the pole). The dashed line is the boundary of capture: the 0.5 contour of
 the captured indicator, interpolated linearly over a triangulation of the cases of the panel.
 
@@ -30,9 +31,10 @@ import matplotlib.tri as mtri  # noqa: E402
 import numpy as np  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from capture_geometry import H, start_problem  # noqa: E402
+from capture_geometry import H, R, R_SHAFT, start_problem  # noqa: E402
 
 CENTRED_MM = 2.0
+BORE_MM = 1e3 * (R - R_SHAFT)  # the pole axis farther from the ring axis at a ring: through it
 
 
 def num(s):
@@ -82,14 +84,17 @@ def classify(r):
     if r["status"] != "completed":
         return "run failed", r["status"]
     lock = num(r["events.lock"])
+    through = r.get("bore_max_mm", 0.0) > BORE_MM  # the pole left a ring bore on the way
     if math.isnan(lock):
         if math.isnan(num(r["events.all_three"])):
-            why = "a rope never on the pole"
+            why = "rope missed"
         elif math.isnan(num(r["events.stall"])):
             why = "no stall"
         else:
             why = "not at rest"
-        return "nolock", why
+        return "nolock", why + (" +ring" if through else "")
+    if through:
+        return "nolock", "ring"  # locked, but only after the pole went through a ring
     if 1e3 * num(r["events.final_lateral_offset_m"]) < CENTRED_MM:
         return "centred", f"lock {lock:.2f} s"
     return "offcentre", f"lock {lock:.2f} s"
@@ -106,7 +111,7 @@ def main():
     for table in tables:
         with open(table, newline="") as f:
             for r in csv.DictReader(f):
-                r["table"] = table
+                r["sweep"] = os.path.basename(os.path.dirname(os.path.abspath(table)))
                 r["lean"] = lean_deg(r)
                 probes = os.path.join(os.path.dirname(table), "cases", "case-%04d" % int(r["case"]),
                                       "out", "probes.csv")
@@ -114,14 +119,15 @@ def main():
                     r["bore_max_mm"], r["knob_ropes_end"], r["drive_end_deg"] = history(probes)
                 rows.append(r)
     if derived:
-        cols = ["table", "case", "mu", "offset_mm", "tilt_deg", "lean", "status", "class", "why",
+        cols = ["sweep", "case", "mu", "offset_mm", "tilt_deg", "lean", "status", "class", "why",
                 "events.lock", "events.final_tilt_deg", "events.final_lateral_offset_m",
                 "events.peak_contact_force", "bore_max_mm", "knob_ropes_end", "drive_end_deg"]
         with open(derived, "w", newline="") as f:
             w = csv.writer(f, lineterminator="\n")
             w.writerow(["lean_deg" if c == "lean" else c for c in cols])
             for r in rows:
-                r["class"], r["why"] = classify(r)
+                r["class"], why = classify(r)
+                r["why"] = why.replace("\n", " ")
                 w.writerow([r.get(c, "") if not isinstance(r.get(c), float) else f"{r[c]:.6g}"
                             for c in cols])
         print("wrote", derived)
@@ -148,7 +154,7 @@ def main():
                              is not None for x in gx] for y in gy], dtype=float)
             ax.contourf(gx, gy, bad, levels=[0.5, 1.5], colors=["0.85"])
             ax.contour(gx, gy, bad, levels=[0.5], colors="0.5", linewidths=0.8)
-            pts, ind = [], []
+            pts, locked, offset = [], [], []
             for r in rows:
                 if num(r["mu"]) != mu:
                     continue
@@ -160,19 +166,32 @@ def main():
                 kind, label = classify(r)
                 style = {"centred": ("o", "tab:green"), "offcentre": ("^", "tab:orange"),
                          "nolock": ("x", "tab:red"), "run failed": ("s", "0.5")}[kind]
-                ax.plot(x, y, style[0], color=style[1], ms=10, mew=2.5)
-                if kind in ("centred", "offcentre", "nolock"):
-                    pts.append((x, y))
-                    ind.append(1.0 if kind == "centred" else 0.0)
-                if kind != "centred":
-                    extra = f"\n{num(r['events.final_tilt_deg']):.1f}°" if kind == "offcentre" else ""
-                    ax.annotate(label + extra, (x, y), textcoords="offset points", xytext=(0, -22),
+                ax.plot(x, y, style[0], color=style[1], ms=9, mew=2.5)
+                if kind == "run failed" or kind == "nolock":
+                    ax.annotate(label, (x, y), textcoords="offset points", xytext=(0, -16),
                                 ha="center", fontsize=6.5)
-            if len(pts) >= 3 and 0.0 < sum(ind) < len(ind):
+                else:
+                    off = 1e3 * num(r["events.final_lateral_offset_m"])
+                    ax.annotate(f"{off:.1f}", (x, y), textcoords="offset points", xytext=(0, -14),
+                                ha="center", fontsize=6.5)
+                    offset.append(off)
+                if kind != "run failed":
+                    pts.append((x, y))
+                    locked.append(0.0 if kind == "nolock" else 1.0)
+                    if kind == "nolock":
+                        offset.append(math.nan)
+            if len(pts) >= 3:
                 p = np.array(pts)
                 try:
                     tri = mtri.Triangulation(p[:, 0], p[:, 1])
-                    ax.tricontour(tri, ind, levels=[0.5], colors="k", linestyles="--")
+                    if 0.0 < sum(locked) < len(locked):
+                        ax.tricontour(tri, locked, levels=[0.5], colors="k", linewidths=1.8)
+                    off = np.array(offset)
+                    ok = np.isfinite(off)  # the centring limit over the locked cases only
+                    if ok.sum() >= 3 and off[ok].min() < CENTRED_MM < off[ok].max():
+                        ax.tricontour(mtri.Triangulation(p[ok, 0], p[ok, 1]), off[ok],
+                                      levels=[CENTRED_MM], colors="tab:blue", linestyles="--",
+                                      linewidths=1.2)
                 except (RuntimeError, ValueError):
                     pass  # collinear cases: no triangulation, no boundary drawn
             name = "in the plane of the offset (+: knob towards +x)" if comp == "x" else \
@@ -183,9 +202,12 @@ def main():
             ax.set_xlim(*xlim)
             ax.set_ylim(gy[0], gy[-1])
             ax.grid(alpha=0.3)
-    fig.suptitle("Capture envelope: green captured and centred, orange locked off-centre, red not locked,\n"
-                 "grey square run failed; grey area: impossible start; dashed: boundary of capture",
-                 fontsize=10)
+    fig.suptitle("Capture envelope: green locked and centred (axis within 2 mm at h/2), orange locked "
+                 "off-centre (label: final axis offset at h/2 [mm]), grey square run failed; red: not "
+                 "captured:\n'rope missed' (never all three on the pole), 'no stall', 'ring' (the pole "
+                 "swung through a ring bore on the way: locked only after that, not physical); grey area: "
+                 "impossible start;\nblack line: boundary of capture, blue dashed: 2 mm centring limit "
+                 "(both linear between cases)", fontsize=9)
     fig.tight_layout()
     fig.savefig(png, dpi=110)
     print("wrote", png)

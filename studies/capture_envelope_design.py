@@ -3,7 +3,7 @@ envelope"): root offset dx along x, tilt theta and its lean direction beta (knob
 beta), friction mu. Candidate starts that are impossible (studies/capture_geometry.py: shaft
 outside a ring bore, a rope inside the pole) are not written; they are listed with the reason.
 
-Usage: /usr/bin/python3 studies/capture_envelope_design.py STAGE   (STAGE: wide | far)
+Usage: /usr/bin/python3 studies/capture_envelope_design.py STAGE   (STAGE: wide | far | edge)
 writes studies/sweeps/capture_envelope_STAGE.toml and prints the skipped starts."""
 import sys
 
@@ -33,7 +33,17 @@ def far():
     return geo
 
 
-STAGES = {"wide": wide, "far": far}
+def edge():
+    """Third pass: beyond the far pass, the starts at the edge of the possible ones with the largest
+    tilts (35-45 deg, leaning back across the axis, the knob starting at or below the rotating
+    ring)."""
+    geo = []
+    for dx, th in ((-150, 45), (-140, 40), (-130, 35)):
+        geo += [(dx, float(th), 0), (-dx, float(th), 180)]
+    return geo
+
+
+STAGES = {"wide": wide, "far": far, "edge": edge}
 
 HEADER = """# The capture envelope, {stage} pass (studies/README.md, "Capture envelope"), written by
 #   /usr/bin/python3 studies/capture_envelope_design.py {stage}
