@@ -75,7 +75,7 @@ void refresh_cable_boxes(const Model& model, const SystemState& state, Workspace
       Aabb& box = ws.element_boxes[c][j];
       box.lower = start.cwiseMin(a).cwiseMin(b).cwiseMin(end);
       box.upper = start.cwiseMax(a).cwiseMax(b).cwiseMax(end);
-      ws.element_deviations[c][j] = chord_deviation(start, a, b, end);
+      ws.element_deviations[c][j] = -1.0;  // computed on demand (stored_hull)
       lower = lower.cwiseMin(box.lower);
       upper = upper.cwiseMax(box.upper);
     }
@@ -102,9 +102,9 @@ const std::vector<Aabb>& element_boxes_of(const Model& model, const SystemState&
 
 namespace {
 
-// The hull of element j of cable c from the boxes and deviations of the last
-// refresh_cable_boxes (which must have been at `state`).
-ElementHull stored_hull(const Model& model, const SystemState& state, const Workspace& ws, Index c,
+// The hull of element j of cable c from the boxes of the last refresh_cable_boxes (which must have
+// been at `state`); its chord deviation is computed at the first request after the refresh.
+ElementHull stored_hull(const Model& model, const SystemState& state, Workspace& ws, Index c,
                         Index j) {
   const CableData& cable = model.cables()[c];
   const Index base = cable.first_coordinate + 6 * j;
@@ -114,7 +114,9 @@ ElementHull stored_hull(const Model& model, const SystemState& state, const Work
   h.end = state.q.segment<3>(base + 6);
   h.p1 = h.start + third * state.q.segment<3>(base + 3);
   h.p2 = h.end - third * state.q.segment<3>(base + 9);
-  h.deviation = ws.element_deviations[c][j];
+  double& deviation = ws.element_deviations[c][j];
+  if (deviation < 0.0) deviation = chord_deviation(h.start, h.p1, h.p2, h.end);
+  h.deviation = deviation;
   h.box = ws.element_boxes[c][j];
   return h;
 }
