@@ -138,7 +138,7 @@ std::string apply_overrides(const Options& o) {
   toml::table root = toml::parse_file(o.scene);
   if (o.elements > 0) studies::set_capture_rope_elements(root, o.elements);
   if (o.axial_damping >= 0.0 || o.bending_stiffness >= 0.0 || o.bending_damping >= 0.0 || o.mass_damping >= 0.0)
-    for (toml::node& c : *root["cable"].as_array()) {
+    for (toml::node& c : *root[root["cable"].as_array() ? "cable" : "rod"].as_array()) {
       toml::table& section = *c.as_table()->at("section").as_table();
       if (o.axial_damping >= 0.0) section.insert_or_assign("axial_damping", o.axial_damping);
       if (o.bending_stiffness > 0.0) {

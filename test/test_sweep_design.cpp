@@ -11,6 +11,7 @@
 #include <string>
 
 #include "ancf/io/scene_error.hpp"
+#include "ancf/io/scene.hpp"
 #include "ancf/io/sweep_design.hpp"
 
 namespace fs = std::filesystem;
@@ -49,9 +50,12 @@ TEST(SweepDesign, GridIsNestedLoopsLastParameterFastest) {
 
 TEST(SweepDesign, ListPairsValuesAndTextValuesAreInsertedAsWritten) {
   const SweepSpec s = load_sweep((kSweeps / "failing.toml").string());
-  ASSERT_EQ(s.cases.size(), 5u);
-  EXPECT_EQ(s.cases[2].shown, (std::vector<std::string>{"1", "10000", "too long"}));
-  EXPECT_EQ(s.cases[3].overrides[2].value, "\"crash me\"");
+  ASSERT_EQ(s.cases.size(), 6u);  // good, error, timeout, crash, solver failure, good
+  EXPECT_EQ(s.cases[2].shown, (std::vector<std::string>{"1", "10000", "too long", "\"fixed\""}));
+  // The sweep-wide `set` entries come first (three), then one override per parameter.
+  ASSERT_EQ(s.cases[3].overrides.size(), 7u);
+  EXPECT_EQ(s.cases[3].overrides[2].value, "2e-3");
+  EXPECT_EQ(s.cases[3].overrides[5].value, "\"crash me\"");
   EXPECT_EQ(s.time_limit, 1.5);
 }
 
@@ -123,4 +127,20 @@ TEST(SweepDesign, BadFilesAreLocatedErrors) {
                                      "keys = [\"x\"]\nmin = 2.0\nmax = 1.0\n")
           .find("max > min"),
       std::string::npos);
+}
+
+// The capture envelope for rod ropes (studies/sweeps/capture_envelope_rod.toml) addresses
+// studies/scenes/capture_rod.toml: every case builds, with the ropes as rods clamped into both
+// rings including twist (three twist rows tied to the ring).
+TEST(SweepDesign, CaptureEnvelopeRodCasesBuild) {
+  const SweepSpec spec = load_sweep(
+      (fs::path(ANCF_SOURCE_DIR) / "studies" / "sweeps" / "capture_envelope_rod.toml").string());
+  ASSERT_EQ(spec.cases.size(), 18u);
+  const std::string base = read_scene_text(spec.scene);
+  for (const SweepCase& c : spec.cases) {
+    const Scene scene = load_scene_from_string(base, spec.scene, c.overrides);
+    EXPECT_EQ(scene.model.cables().size(), 3u);
+    for (const CableData& rope : scene.model.cables()) EXPECT_TRUE(rope.rod.has_value());
+    EXPECT_EQ(scene.model.twist_rows().size(), 3u);
+  }
 }

@@ -69,8 +69,11 @@ int info_command(const std::string& scene_path) {
       fmt::print("  {:<18} mass {:.4g} kg\n", b.name, b.inertia.mass);
     fmt::print("frames       {}\n", m.frames().size());
     fmt::print("constraints  {}\n", m.constraints().size());
+    const Index twist_rows_start = m.coordinate_count() + static_cast<Index>(m.rows().size());
     for (const ConstraintData& c : m.constraints())
-      fmt::print("  {:<30} {} rows\n", c.name, c.row_count);
+      fmt::print(
+          "  {:<30} {} rows{}\n", c.name, c.row_count,
+          c.first_row >= twist_rows_start ? " (rod twist tied to a body/frame: d2.b = 0)" : "");
     fmt::print("forces       {} spring-dampers, {} point forces, {} torques, {} drives\n",
                m.spring_dampers().size(), m.point_forces().size(), m.body_torques().size(),
                m.drives().size());

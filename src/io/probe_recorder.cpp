@@ -43,33 +43,53 @@ Vec3 rotation_vector(const Mat3& a) {
 
 /// Force [N] and moment [N m] that the constraints `p.constraints` exert on the probe's node or
 /// body: the generalized constraint force −Φ_qᵀλ of their rows (residual M a + … + Φ_qᵀλ),
-/// restricted to the entity's 3-blocks, read as a rigid motion's virtual work. Force: the block
+/// restricted to the entity's coordinates, read as a rigid motion's virtual work. Force: the block
 /// of the node position / body origin. Moment: δr_x = δθ × r_x (node slope) and δa_i = δθ × a_i
 /// (body axes) give M = r_x × Q_{r_x} and M = Σ a_i × Q_{a_i}, about the node and the body
 /// origin respectively (a force f at body point p̄ gives Q_{a_i} = p̄_i f, M = (r_P − r_O) × f).
+/// A rod node also turns its twist angle: δα = t̂·δθ + (R₁ × t̂)·(δθ × t̂)/(1 + R₁·t̂) (docs/rod.md,
+/// end moments), which adds Q_α [t̂ + t̂ × (R₁ × t̂)/(1 + R₁·t̂)] to M.
 void reaction(const Model& model, const Probe& p, const SystemState& state, Workspace& ws,
               Vec3& force, Vec3& moment) {
   const Index first = p.on_body ? model.bodies()[p.target].first_coordinate
                                 : model.node_coordinate(p.target, p.node);
   const int blocks = p.on_body ? 4 : 2;
+  const CableData* rod =
+      !p.on_body && model.cables()[p.target].rod ? &model.cables()[p.target] : nullptr;
+  const Index node = rod ? (first - rod->first_coordinate) / 6 : 0;
+  const Index twist = rod ? rod->rod->twist_first + node : -1;
   std::array<Vec3, 4> g;
   for (Vec3& x : g) x.setZero();
+  double g_twist = 0.0;
   const auto frames = ws.frames_at(model, state.t);
+  const RodHistory& history = state.rod_history ? *state.rod_history : ws.rods;
+  const Index dot_rows = static_cast<Index>(model.rows().size());
   std::array<Vec3, AffineVector::kMaxTerms> gu, gw;
+  RodTwistRowValues tv;
+  auto add_column = [&](Index column, double value) {
+    if (column == twist) g_twist += value;
+    const Index offset = column - first;
+    if (offset >= 0 && offset < 3 * blocks) g[offset / 3][offset % 3] += value;
+  };
   for (const Index c : p.constraints) {
     const ConstraintData& data = model.constraints()[c];
     // first_row counts system rows (y = [q; λ]): multiplier r is system row n + r.
     const Index begin = data.first_row - model.coordinate_count();
     for (Index r = begin; r < begin + data.row_count; ++r) {
+      const double lambda = state.lambda[r];
+      if (r >= dot_rows) {
+        const RodTwistRowData& t = model.twist_rows()[r - dot_rows];
+        evaluate(t.row, history.frames[t.cable][t.node], as_span(state.q), {}, frames, tv);
+        for (int k = 0; k < tv.column_count; ++k) add_column(tv.columns[k], lambda * tv.phi_q[k]);
+        continue;
+      }
       const DotConstraintRow& row = model.rows()[r];
       const AffineVectorState u = evaluate(row.u, as_span(state.q), as_span(state.v), frames);
       const AffineVectorState w = evaluate(row.w, as_span(state.q), as_span(state.v), frames);
       gradient_blocks(row, u, w, RowGradient::phi, std::span(gu.data(), row.u.term_count),
                       std::span(gw.data(), row.w.term_count));
       auto add = [&](const BlockTerm& term, const Vec3& gradient) {
-        const Index offset = term.block - first;
-        if (offset >= 0 && offset < 3 * blocks && offset % 3 == 0)
-          g[offset / 3] += state.lambda[r] * gradient;
+        for (int d = 0; d < 3; ++d) add_column(term.block + d, lambda * gradient[d]);
       };
       for (int j = 0; j < row.u.term_count; ++j) add(row.u.terms[j], gu[j]);
       for (int j = 0; j < row.w.term_count; ++j) add(row.w.terms[j], gw[j]);
@@ -78,6 +98,11 @@ void reaction(const Model& model, const Probe& p, const SystemState& state, Work
   force = -g[0];
   moment.setZero();
   for (int k = 1; k < blocks; ++k) moment += state.q.segment<3>(first + 3 * k).cross(-g[k]);
+  if (rod && g_twist != 0.0) {
+    const Vec3 t = state.q.segment<3>(first + 3).normalized();
+    const Vec3 r1 = history.frames[p.target][node].col(0);
+    moment -= g_twist * (t + t.cross(r1.cross(t)) / (1.0 + r1.dot(t)));
+  }
 }
 
 }  // namespace

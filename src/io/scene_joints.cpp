@@ -31,24 +31,32 @@ void read_node_joint(TableReader& t, SceneBuild& b, const std::string& kind,
     if (!rod) t.fail("at", "fix_twist needs a node of a [[rod]] (a cable has no twist)");
     b.build(t, [&] { b.builder.fix_twist(name, node); });
   }
-  if (kind == "attach" && t.has("twist"))
-    t.fail("twist",
-           "a rod's twist cannot be tied to a body or frame yet (docs/rod.md, \"Not available\")");
   if (kind == "attach") {
     const std::string to = t.string("to");
     const bool slope = t.boolean_or("slope", false);
+    // A rod's end with its slope fixed in the body/frame also has its twist tied to it (the
+    // material triad fixed, rod_twist_constraint.hpp), unless twist = false.
+    const bool twist = t.boolean_or("twist", rod && slope);
+    if (twist && !rod)
+      t.fail("twist", "twist = true needs a node of a [[rod]] (a cable has no twist)");
+    if (twist && !slope)
+      t.fail("twist", "twist = true needs slope = true (the twist is about the fixed slope)");
     if (slope) b.declare(t, "name", slope_name);
+    const std::string twist_name = name + ".twist";
+    if (twist) b.declare(t, "name", twist_name);
     if (b.names.bodies.count(to)) {
       const Index body = b.names.bodies.at(to);
       b.build(t, [&] {
         b.builder.attach_node_to_body(name, node, body);
         if (slope) b.builder.align_slope_to_body(slope_name, node, body);
+        if (twist) b.builder.tie_twist_to_body(twist_name, node, body);
       });
     } else if (b.names.frames.count(to)) {
       const int frame = static_cast<int>(b.names.frames.at(to));
       b.build(t, [&] {
         b.builder.attach_node_to_frame(name, node, frame);
         if (slope) b.builder.align_slope_to_frame(slope_name, node, frame);
+        if (twist) b.builder.tie_twist_to_frame(twist_name, node, frame);
       });
     } else {
       t.fail("to", "no body or frame named '" + to + "' (use pin to fix a node to ground)");

@@ -62,12 +62,14 @@ Scene build_scene(const toml::table& root_table, const std::string& path,
       throw SceneError(path, it->second.line, 0, it->second.path, e.what());
     throw SceneError(path, 0, 0, "", e.what());
   }
-  // Reaction probes: the constraints of their joint (NAME, and NAME.slope where it exists).
+  // Reaction probes: the constraints of their joint (NAME, and NAME.slope, NAME.twist where they
+  // exist).
   for (Probe& p : scene.output.probes)
     if (p.kind == Probe::Kind::reaction)
       for (Index c = 0; c < static_cast<Index>(scene.model.constraints().size()); ++c) {
         const std::string& name = scene.model.constraints()[c].name;
-        if (name == p.joint || name == p.joint + ".slope") p.constraints.push_back(c);
+        if (name == p.joint || name == p.joint + ".slope" || name == p.joint + ".twist")
+          p.constraints.push_back(c);
       }
   scene.names = std::move(b.names);
   return scene;

@@ -19,6 +19,20 @@ double seconds_since(Clock::time_point start) {
 
 using BlockVec = std::array<Vec3, AffineVector::kMaxTerms>;
 
+// The rod history twist coordinates refer to: the state's (outputs) or the workspace's.
+const RodHistory& history_of(const SystemState& state, const Workspace& ws) {
+  return state.rod_history ? *state.rod_history : ws.rods;
+}
+
+// Twist row k (rod_twist_constraint.hpp) at the state's q (and v if `with_velocity`).
+void evaluate_twist(const Model& model, std::size_t k, const SystemState& state, Workspace& ws,
+                    bool with_velocity, RodTwistRowValues& out) {
+  const RodTwistRowData& t = model.twist_rows()[k];
+  evaluate(t.row, history_of(state, ws).frames[t.cable][t.node], as_span(state.q),
+           with_velocity ? as_span(state.v) : std::span<const double>{},
+           ws.frames_at(model, state.t), out);
+}
+
 // Visit every cable element with its 12 coordinates/velocities taken from the global vectors.
 template <class Visitor>
 void for_each_element(const Model& model, const VecX& q, const VecX& v, Visitor&& visit) {
@@ -233,7 +247,7 @@ void add_iteration_matrix_to(const Model& model, const SystemState& state,
 
   // Constraint blocks Φ_q, Φ_qᵀ and the geometric stiffness w_q ∂(Φ_qᵀλ)/∂q = w_q λ α_k β_m I₃.
   BlockVec gu, gw;
-  for (Index i = 0; i < model.multiplier_count(); ++i) {
+  for (Index i = 0; i < static_cast<Index>(model.rows().size()); ++i) {
     const DotConstraintRow& row = model.rows()[i];
     const AffineVectorState u = evaluate(row.u, q, {}, frames);
     const AffineVectorState wv = evaluate(row.w, q, {}, frames);
@@ -256,6 +270,22 @@ void add_iteration_matrix_to(const Model& model, const SystemState& state,
     add_geometric_stiffness(row, g, [&](Index, Index, double c) {
       for (int d = 0; d < 3; ++d) t.position(geo[k++]) += c;
     });
+  }
+  // Twist rows: Φ_q, Φ_qᵀ and w_q λ Φ_qq.
+  const Index dot_rows = static_cast<Index>(model.rows().size());
+  RodTwistRowValues tv;
+  for (std::size_t k = 0; k < model.twist_rows().size(); ++k) {
+    const RodTwistRowData& d = model.twist_rows()[k];
+    evaluate_twist(model, k, state, ws, false, tv);
+    for (int c = 0; c < tv.column_count; ++c) {
+      t.position(d.phi_slots[2 * c]) += tv.phi_q[c];
+      t.position(d.phi_slots[2 * c + 1]) += tv.phi_q[c];
+    }
+    const double g = w.w_q * state.lambda[dot_rows + static_cast<Index>(k)];
+    if (g == 0.0) continue;
+    for (int j = 0; j < tv.column_count; ++j)
+      for (int i = 0; i < tv.column_count; ++i)
+        t.position(d.hessian_slots[RodTwistRowData::kN * j + i]) += g * tv.phi_qq(i, j);
   }
 }
 
@@ -313,7 +343,8 @@ void assemble_residual(const Model& model, const SystemState& state, double load
   for_each_element(
       model, state.q, state.v,
       [&](Index, Index j, const CableData& c, Index base, const Vec12& e, const Vec12& e_dot) {
-        evaluate_cable_element(c.section, c.elements[j], e, e_dot, {}, ws.element);
+        evaluate_cable_element(c.section, c.elements[j], e, e_dot,
+                               {.force_kernel = ws.cable_force_kernel}, ws.element);
         rq.segment<12>(base) += ws.element.force;
         if (inertia) add_mass_times(c.mass[j], base, state.a, rq);
         if (c.section.mass_damping > 0.0)
@@ -350,7 +381,7 @@ void assemble_residual(const Model& model, const SystemState& state, double load
   }
 
   BlockVec gu, gw;
-  for (Index i = 0; i < model.multiplier_count(); ++i) {
+  for (Index i = 0; i < static_cast<Index>(model.rows().size()); ++i) {
     const DotConstraintRow& row = model.rows()[i];
     const AffineVectorState u = evaluate(row.u, q, {}, frames);
     const AffineVectorState w = evaluate(row.w, q, {}, frames);
@@ -362,6 +393,16 @@ void assemble_residual(const Model& model, const SystemState& state, double load
       rq.segment<3>(row.u.terms[k].block) += lambda * gu[k];
     for (int k = 0; k < row.w.term_count; ++k)
       rq.segment<3>(row.w.terms[k].block) += lambda * gw[k];
+  }
+  const Index dot_rows = static_cast<Index>(model.rows().size());
+  RodTwistRowValues tv;
+  for (std::size_t k = 0; k < model.twist_rows().size(); ++k) {
+    const Index i = dot_rows + static_cast<Index>(k);
+    evaluate_twist(model, k, state, ws, false, tv);
+    r[n + i] = tv.phi;
+    const double lambda = state.lambda[i];
+    if (lambda == 0.0) continue;
+    for (int c = 0; c < tv.column_count; ++c) rq[tv.columns[c]] += lambda * tv.phi_q[c];
   }
 }
 
@@ -402,18 +443,30 @@ void add_iteration_matrix(const Model& model, const SystemState& state, const It
 void assemble_velocity_constraint(const Model& model, const SystemState& state, Workspace& ws,
                                   std::span<double> out) {
   const auto frames = ws.frames_at(model, state.t);
-  for (Index i = 0; i < model.multiplier_count(); ++i) {
+  const Index dot_rows = static_cast<Index>(model.rows().size());
+  for (Index i = 0; i < dot_rows; ++i) {
     const DotConstraintValues c =
         evaluate(model.rows()[i], as_span(state.q), as_span(state.v), frames);
     out[i] = c.phi_q_v + c.phi_t;
+  }
+  RodTwistRowValues tv;
+  for (std::size_t k = 0; k < model.twist_rows().size(); ++k) {
+    evaluate_twist(model, k, state, ws, true, tv);
+    out[dot_rows + static_cast<Index>(k)] = tv.phi_q_v + tv.phi_t;
   }
 }
 
 void assemble_acceleration_rhs(const Model& model, const SystemState& state, Workspace& ws,
                                std::span<double> out) {
   const auto frames = ws.frames_at(model, state.t);
-  for (Index i = 0; i < model.multiplier_count(); ++i)
+  const Index dot_rows = static_cast<Index>(model.rows().size());
+  for (Index i = 0; i < dot_rows; ++i)
     out[i] = evaluate(model.rows()[i], as_span(state.q), as_span(state.v), frames).gamma;
+  RodTwistRowValues tv;
+  for (std::size_t k = 0; k < model.twist_rows().size(); ++k) {
+    evaluate_twist(model, k, state, ws, true, tv);
+    out[dot_rows + static_cast<Index>(k)] = tv.gamma;
+  }
 }
 
 Energies energies(const Model& model, const SystemState& state, Workspace& ws) {
@@ -455,13 +508,22 @@ ConstraintViolation constraint_violation(const Model& model, const SystemState& 
                                          Workspace& ws) {
   ConstraintViolation cv;
   const auto frames = ws.frames_at(model, state.t);
-  for (Index i = 0; i < model.multiplier_count(); ++i) {
+  auto take = [&](Index i, double phi, double vel) {
+    if (std::abs(phi) > cv.position)
+      cv.position = std::abs(phi), cv.position_row = model.coordinate_count() + i;
+    if (std::abs(vel) > cv.velocity)
+      cv.velocity = std::abs(vel), cv.velocity_row = model.coordinate_count() + i;
+  };
+  const Index dot_rows = static_cast<Index>(model.rows().size());
+  for (Index i = 0; i < dot_rows; ++i) {
     const DotConstraintValues c =
         evaluate(model.rows()[i], as_span(state.q), as_span(state.v), frames);
-    if (std::abs(c.phi) > cv.position)
-      cv.position = std::abs(c.phi), cv.position_row = model.coordinate_count() + i;
-    const double vel = std::abs(c.phi_q_v + c.phi_t);
-    if (vel > cv.velocity) cv.velocity = vel, cv.velocity_row = model.coordinate_count() + i;
+    take(i, c.phi, c.phi_q_v + c.phi_t);
+  }
+  RodTwistRowValues tv;
+  for (std::size_t k = 0; k < model.twist_rows().size(); ++k) {
+    evaluate_twist(model, k, state, ws, true, tv);
+    take(dot_rows + static_cast<Index>(k), tv.phi, tv.phi_q_v + tv.phi_t);
   }
   return cv;
 }

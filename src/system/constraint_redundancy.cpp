@@ -27,13 +27,24 @@ void ModelBuilder::check_redundancy(const Model& m) {
   for (const DrivenFrame& f : m.frames_) frames.push_back(f.at(0.0));
   const VecX& q = m.q0_;
   // Columns each row touches (3 per block of each affine term).
+  // Twist rows (after the dot rows) at the reference history: their values per column.
+  const Index dot_rows = static_cast<Index>(m.rows_.size());
+  std::vector<RodTwistRowValues> twist(m.twist_rows_.size());
+  for (std::size_t k = 0; k < twist.size(); ++k) {
+    const RodTwistRowData& t = m.twist_rows_[k];
+    evaluate(t.row, m.cables_[t.cable].rod->reference_frames[t.node], as_span(q), {}, frames,
+             twist[k]);
+  }
   std::vector<std::vector<Index>> row_columns(rows);
-  for (Index i = 0; i < rows; ++i) {
+  for (Index i = 0; i < dot_rows; ++i) {
     const DotConstraintRow& r = m.rows_[i];
     for (const AffineVector* a : {&r.u, &r.w})
       for (int k = 0; k < a->term_count; ++k)
         for (int d = 0; d < 3; ++d) row_columns[i].push_back(a->terms[k].block + d);
   }
+  for (std::size_t k = 0; k < twist.size(); ++k)
+    for (int c = 0; c < twist[k].column_count; ++c)
+      row_columns[dot_rows + static_cast<Index>(k)].push_back(twist[k].columns[c]);
 
   // Rows in groups that share no column (connected components of the row–column incidence,
   // union–find over columns): Φ_q is block diagonal over the groups, so a row is a combination
@@ -72,6 +83,11 @@ void ModelBuilder::check_redundancy(const Model& m) {
     const Index count = static_cast<Index>(group.size());
     MatX jac = MatX::Zero(count, next);
     for (Index g = 0; g < count; ++g) {
+      if (group[g] >= dot_rows) {
+        const RodTwistRowValues& t = twist[group[g] - dot_rows];
+        for (int c = 0; c < t.column_count; ++c) jac(g, column[t.columns[c]]) += t.phi_q[c];
+        continue;
+      }
       const DotConstraintRow& r = m.rows_[group[g]];
       const AffineVectorState u = evaluate(r.u, as_span(q), {}, frames);
       const AffineVectorState w = evaluate(r.w, as_span(q), {}, frames);

@@ -56,8 +56,14 @@ void GglProblem::build_pattern() {
   const Index nnz = contact_.slot_count(), n = n_, v0 = n_, l0 = 2 * n_, u0 = 2 * n_ + m_;
   const std::span<const Index> row = contact_.slot_rows(), col = contact_.slot_columns();
   std::vector<char> geometric(nnz, 0);
-  for (Index i = 0; i < m_; ++i)
+  for (Index i = 0; i < static_cast<Index>(model_.rows().size()); ++i)
     for (const Index s : model_.geometric_slots(i)) geometric[s] = 1;
+  for (const RodTwistRowData& t : model_.twist_rows()) {
+    std::array<Index, RodTwistRow::kMaxColumns> cols{};
+    const int count = rod_twist_columns(t.row, cols);
+    for (int j = 0; j < count; ++j)
+      for (int i = 0; i < count; ++i) geometric[t.hessian_slots[RodTwistRowData::kN * j + i]] = 1;
+  }
 
   // Positions in the GGL matrix of the parts of model entry s (−1: that part does not exist).
   enum Part { kPosition, kVelocity, kPsiQ, kPsiV, kMu, kMuGeometric, kParts };
@@ -168,7 +174,8 @@ void GglProblem::compute_scales(GglScales given) {
   const auto frames = workspace_.frames_at(model_, 0.0);
   VecX dense = VecX::Zero(n_);
   BlockVec gu, gw;
-  for (Index i = 0; i < m_; ++i) {
+  const Index dot_rows = static_cast<Index>(model_.rows().size());
+  for (Index i = 0; i < dot_rows; ++i) {
     const DotConstraintRow& row = model_.rows()[i];
     const AffineVectorState u = evaluate(row.u, as_span(q0), {}, frames);
     const AffineVectorState w = evaluate(row.w, as_span(q0), {}, frames);
@@ -187,6 +194,24 @@ void GglProblem::compute_scales(GglScales given) {
         g2 += dense.segment<3>(b).squaredNorm() * scale_[b] * scale_[b];
         dense.segment<3>(b).setZero();  // counted once
       }
+    const double g = std::max(std::sqrt(g2), 1e-300);
+    row_gradient_[i] = g;
+    scale_[2 * n_ + i] = scales_.energy / g;
+    scale_[2 * n_ + m_ + i] = largest_scale * largest_scale / (scales_.time * g);
+  }
+  // Twist rows the same way, at the reference history (their columns do not repeat).
+  const RodHistory reference = RodHistory::initial(model_);
+  RodTwistRowValues tv;
+  for (std::size_t k = 0; k < model_.twist_rows().size(); ++k) {
+    const RodTwistRowData& tr = model_.twist_rows()[k];
+    evaluate(tr.row, reference.frames[tr.cable][tr.node], as_span(q0), {}, frames, tv);
+    double largest_scale = 0.0, g2 = 0.0;
+    for (int c = 0; c < tv.column_count; ++c) {
+      const double sc = scale_[tv.columns[c]];
+      largest_scale = std::max(largest_scale, sc);
+      g2 += tv.phi_q[c] * tv.phi_q[c] * sc * sc;
+    }
+    const Index i = dot_rows + static_cast<Index>(k);
     const double g = std::max(std::sqrt(g2), 1e-300);
     row_gradient_[i] = g;
     scale_[2 * n_ + i] = scales_.energy / g;
@@ -219,7 +244,8 @@ void GglProblem::residual(double t, std::span<const double> y, std::span<const d
   const auto q = as_span(state_.q), v = as_span(state_.v);
   const double* mu = y.data() + 2 * n_ + m_;
   BlockVec gu, gw;
-  for (Index i = 0; i < m_; ++i) {
+  const Index dot_rows = static_cast<Index>(model_.rows().size());
+  for (Index i = 0; i < dot_rows; ++i) {
     const DotConstraintRow& row = model_.rows()[i];
     const DotConstraintValues c = evaluate(row, q, v, frames);
     r[2 * n_ + m_ + i] = c.phi_q_v + c.phi_t;
@@ -231,6 +257,15 @@ void GglProblem::residual(double t, std::span<const double> y, std::span<const d
       for (int d = 0; d < 3; ++d) r[row.u.terms[k].block + d] += mu[i] * gu[k][d];
     for (int k = 0; k < row.w.term_count; ++k)
       for (int d = 0; d < 3; ++d) r[row.w.terms[k].block + d] += mu[i] * gw[k][d];
+  }
+  RodTwistRowValues tv;
+  for (std::size_t k = 0; k < model_.twist_rows().size(); ++k) {
+    const RodTwistRowData& tr = model_.twist_rows()[k];
+    const Index i = dot_rows + static_cast<Index>(k);
+    evaluate(tr.row, workspace_.rods.frames[tr.cable][tr.node], q, v, frames, tv);
+    r[2 * n_ + m_ + i] = tv.phi_q_v + tv.phi_t;
+    if (mu[i] == 0.0) continue;
+    for (int c = 0; c < tv.column_count; ++c) r[tv.columns[c]] += mu[i] * tv.phi_q[c];
   }
 }
 
@@ -252,7 +287,8 @@ void GglProblem::jacobian(double t, std::span<const double> y, std::span<const d
   const auto q = as_span(state_.q), v = as_span(state_.v);
   const double* mu = y.data() + 2 * n_ + m_;
   BlockVec gu, gw, hu, hw;
-  for (Index i = 0; i < m_; ++i) {
+  const Index dot_rows = static_cast<Index>(model_.rows().size());
+  for (Index i = 0; i < dot_rows; ++i) {
     const DotConstraintRow& row = model_.rows()[i];
     const AffineVectorState u = evaluate(row.u, q, v, frames);
     const AffineVectorState w = evaluate(row.w, q, v, frames);
@@ -275,6 +311,24 @@ void GglProblem::jacobian(double t, std::span<const double> y, std::span<const d
     add_geometric_stiffness(row, mu[i], [&](Index, Index, double c) {
       for (int d = 0; d < 3; ++d) values[mu_geometric_slot_[geo[k++]]] += c;
     });
+  }
+  // Twist rows: per column the Φ_q slot (row, c) feeds Ψ_v = Φ_q and Ψ_q; the Φ_qᵀ slot (c, row)
+  // the μ column; the Hessian slots μ Φ_qq.
+  RodTwistRowValues tv;
+  for (std::size_t k = 0; k < model_.twist_rows().size(); ++k) {
+    const RodTwistRowData& tr = model_.twist_rows()[k];
+    evaluate(tr.row, workspace_.rods.frames[tr.cable][tr.node], q, v, frames, tv);
+    for (int c = 0; c < tv.column_count; ++c) {
+      values[psi_v_slot_[tr.phi_slots[2 * c]]] += tv.phi_q[c];
+      values[psi_q_slot_[tr.phi_slots[2 * c]]] += tv.psi_q[c];
+      values[mu_slot_[tr.phi_slots[2 * c + 1]]] += tv.phi_q[c];
+    }
+    const double mu_k = mu[dot_rows + static_cast<Index>(k)];
+    if (mu_k == 0.0) continue;
+    for (int j = 0; j < tv.column_count; ++j)
+      for (int i = 0; i < tv.column_count; ++i)
+        values[mu_geometric_slot_[tr.hessian_slots[RodTwistRowData::kN * j + i]]] +=
+            mu_k * tv.phi_qq(i, j);
   }
 }
 
@@ -307,8 +361,15 @@ void GglProblem::consistent_values(double t, std::span<double> y, std::span<doub
   for (int it = 0; it < 30; ++it) {
     factor();
     rhs.setZero();
-    for (Index i = 0; i < m; ++i)
+    const Index dot_rows = static_cast<Index>(model_.rows().size());
+    for (Index i = 0; i < dot_rows; ++i)
       rhs[n + i] = -evaluate(model_.rows()[i], as_span(s.q), {}, frames()).phi;
+    RodTwistRowValues tv;
+    for (std::size_t k = 0; k < model_.twist_rows().size(); ++k) {
+      const RodTwistRowData& tr = model_.twist_rows()[k];
+      evaluate(tr.row, workspace_.rods.frames[tr.cable][tr.node], as_span(s.q), {}, frames(), tv);
+      rhs[n + dot_rows + static_cast<Index>(k)] = -tv.phi;
+    }
     klu.solve(as_span(rhs));
     s.q += rhs.head(n);
     step = 0.0;

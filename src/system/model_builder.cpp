@@ -59,6 +59,10 @@ void ModelBuilder::require_new_name(const std::string& name, const char* what) c
     if (c.name == name)
       throw ModelError(std::string(what) + ": the name '" + name +
                        "' is already used by a constraint");
+  for (const auto& c : twists_)
+    if (c.name == name)
+      throw ModelError(std::string(what) + ": the name '" + name +
+                       "' is already used by a constraint");
   for (const auto& f : forces_)
     if (f.name == name)
       throw ModelError(std::string(what) + ": the name '" + name +
@@ -506,6 +510,18 @@ Model ModelBuilder::finalize() {
   for (const BodyData& b : m.bodies_)
     push_rows(b.name + ".orthonormality", body_orthonormality(b.first_coordinate));
   for (const PendingConstraint& pc : constraints_) push_rows(pc.name, pc.rows(o));
+  // Twist rows of rods (not bilinear) after all dot rows: multipliers rows_.size() + k.
+  for (const PendingTwist& pt : twists_) {
+    RodTwistRowData d;
+    d.row.slope = o.node(pt.node) + 3;
+    d.row.twist = o.twist(pt.node);
+    d.row.b = pt.b(o);
+    d.cable = pt.node.cable;
+    d.node = pt.node.node;
+    m.constraints_.push_back(
+        {pt.name, next + static_cast<Index>(m.rows_.size() + m.twist_rows_.size()), 1});
+    m.twist_rows_.push_back(d);
+  }
   for (const PendingForce& f : forces_) f.add(o, m);
   for (const auto& [node, moment] : node_moments_) {
     RodMomentData d{node.cable, node.node, moment, {}, {}};

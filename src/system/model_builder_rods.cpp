@@ -99,6 +99,39 @@ void ModelBuilder::join_twist(std::string name, NodeRef a, NodeRef b) {
   });
 }
 
+Mat3 ModelBuilder::initial_rod_triad(NodeRef node, const char* what) const {
+  const PendingCable& c = cables_[node.cable];
+  if (!c.rod) throw ModelError(std::string(what) + ": cable '" + c.name + "' is not a rod");
+  return smallest_rotation(c.frames[node.node], initial_node(node).tail<3>());
+}
+
+void ModelBuilder::tie_twist_to_body(std::string name, NodeRef node, Index body) {
+  node = resolve(node, "tie_twist_to_body");
+  const Mat3 triad = initial_rod_triad(node, "tie_twist_to_body");
+  const PendingBody& pb = body_at(body, "tie_twist_to_body");
+  const Vec3 b_body = pb.rotation.transpose() * triad.col(2);  // d₃ in body coordinates
+  require_new_name(name, "constraint");
+  twists_.push_back({std::move(name), node, [=](const Offsets& o) {
+                       AffineVector b;
+                       return b.add_body(o.body(body), direction_weights(b_body));
+                     }});
+}
+
+void ModelBuilder::tie_twist_to_frame(std::string name, NodeRef node, int frame) {
+  node = resolve(node, "tie_twist_to_frame");
+  const Mat3 triad = initial_rod_triad(node, "tie_twist_to_frame");
+  if (frame < 0 || frame >= static_cast<int>(frames_.size()))
+    throw ModelError("tie_twist_to_frame '" + name + "': no driven frame " + std::to_string(frame));
+  const Vec3 b_frame = frames_[frame].at(0.0).a.transpose() * triad.col(2);
+  require_new_name(name, "constraint");
+  twists_.push_back({std::move(name), node, [=](const Offsets&) {
+                       AffineVector b;
+                       b.frame = frame;
+                       b.frame_vector = b_frame;
+                       return b;
+                     }});
+}
+
 RodData ModelBuilder::make_rod_data(const PendingCable& pc, const CableData& c, Index twist_first) {
   RodData d;
   d.section = *pc.rod;

@@ -43,6 +43,21 @@ void visit_row(Index row, const DotConstraintRow& c, VisitPhiQ&& visit_phi_q,
     }
 }
 
+// A twist row (rod_twist_constraint.hpp): Φ_q at (row, c) and Φ_qᵀ at (c, row) per column, then
+// the Hessian over all column pairs, column-major.
+template <class VisitPhiQ, class VisitHessian>
+void visit_twist_row(Index row, const RodTwistRowData& t, VisitPhiQ&& visit_phi_q,
+                     VisitHessian&& visit_hessian) {
+  std::array<Index, RodTwistRow::kMaxColumns> cols{};
+  const int n = rod_twist_columns(t.row, cols);
+  for (int k = 0; k < n; ++k) {
+    visit_phi_q(row, cols[k]);
+    visit_phi_q(cols[k], row);
+  }
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) visit_hessian(cols[i], cols[j]);
+}
+
 template <class Visit>
 void visit_blocks(const BlockList& blocks, Visit&& visit) {
   for (int cb = 0; cb < blocks.count; ++cb)
@@ -78,8 +93,11 @@ void ModelBuilder::build_pattern_and_slots(Model& m) {
         visit_cable_block(c.first_coordinate + 6 * j, add);
   for (const RodMomentData& d : m.rod_moments_) visit_moment_block(d, add);
   for (const BodyData& b : m.bodies_) visit_cable_block(b.first_coordinate, add);  // 12×12 as well
-  for (Index r = 0; r < m.multiplier_count(); ++r)
-    visit_row(m.n_coordinates_ + r, m.rows_[r], add, add);
+  const Index dot_rows = static_cast<Index>(m.rows_.size());
+  for (Index r = 0; r < dot_rows; ++r) visit_row(m.n_coordinates_ + r, m.rows_[r], add, add);
+  for (std::size_t k = 0; k < m.twist_rows_.size(); ++k)
+    visit_twist_row(m.n_coordinates_ + dot_rows + static_cast<Index>(k), m.twist_rows_[k], add,
+                    add);
   declare_forces(m.springs_, p);
   // Point forces do not depend on q or v: no matrix entries.
   declare_forces(m.torques_, p);
@@ -116,13 +134,26 @@ void ModelBuilder::build_pattern_and_slots(Model& m) {
   }
   m.row_slot_offset_.assign(1, 0);
   m.geometric_slot_offset_.assign(1, 0);
-  for (Index r = 0; r < m.multiplier_count(); ++r) {
+  for (Index r = 0; r < dot_rows; ++r) {
     visit_row(
         m.n_coordinates_ + r, m.rows_[r],
         [&](Index i, Index j) { m.row_slots_.push_back(p.slot(i, j)); },
         [&](Index i, Index j) { m.geometric_slots_.push_back(p.slot(i, j)); });
     m.row_slot_offset_.push_back(static_cast<Index>(m.row_slots_.size()));
     m.geometric_slot_offset_.push_back(static_cast<Index>(m.geometric_slots_.size()));
+  }
+  for (std::size_t k = 0; k < m.twist_rows_.size(); ++k) {
+    RodTwistRowData& t = m.twist_rows_[k];
+    std::array<Index, RodTwistRow::kMaxColumns> cols{};
+    const int n = rod_twist_columns(t.row, cols);
+    int a = 0, h = 0;
+    visit_twist_row(
+        m.n_coordinates_ + dot_rows + static_cast<Index>(k), t,
+        [&](Index i, Index j) { t.phi_slots[a++] = p.slot(i, j); },
+        [&](Index i, Index j) {
+          t.hessian_slots[RodTwistRowData::kN * (h / n) + h % n] = p.slot(i, j);
+          ++h;
+        });
   }
   collect_forces(m.springs_, p);
   collect_forces(m.torques_, p);

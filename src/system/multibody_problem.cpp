@@ -56,9 +56,16 @@ void MultibodyProblem::constraints(double t, std::span<const double> q, std::spa
   // Φ alone, without the element loop of assemble_residual: each row is u·w + c
   // (dot_constraint.hpp).
   const auto frames = workspace_.frames_at(model_, t);
-  for (Index i = 0; i < model_.multiplier_count(); ++i) {
+  const Index dot_rows = static_cast<Index>(model_.rows().size());
+  for (Index i = 0; i < dot_rows; ++i) {
     const DotConstraintRow& row = model_.rows()[i];
     phi[i] = evaluate(row.u, q, {}, frames).value.dot(evaluate(row.w, q, {}, frames).value) + row.c;
+  }
+  RodTwistRowValues tv;  // twist rows (rod_twist_constraint.hpp) under the committed history
+  for (std::size_t k = 0; k < model_.twist_rows().size(); ++k) {
+    const RodTwistRowData& tr = model_.twist_rows()[k];
+    evaluate(tr.row, workspace_.rods.frames[tr.cable][tr.node], q, {}, frames, tv);
+    phi[dot_rows + static_cast<Index>(k)] = tv.phi;
   }
 }
 

@@ -15,6 +15,7 @@
 #include "ancf/physics/force_elements.hpp"
 #include "ancf/physics/kirchhoff_rod_element.hpp"
 #include "ancf/physics/rigid_body.hpp"
+#include "ancf/physics/rod_twist_constraint.hpp"
 #include "ancf/system/cable_geometry.hpp"
 #include "ancf/system/contact_data.hpp"
 
@@ -61,6 +62,17 @@ struct RodMomentData {
   std::array<Index, 16> slots{};
 };
 
+/// A twist row of a rod node tied to a body, frame or space (rod_twist_constraint.hpp). The k-th
+/// is multiplier rows().size() + k (after all dot rows). It is evaluated under the committed
+/// reference triad of node `node` of cable `cable` (RodHistory).
+struct RodTwistRowData {
+  static constexpr int kN = RodTwistRow::kMaxColumns;
+  RodTwistRow row;
+  Index cable = 0, node = 0;
+  std::array<Index, 2 * kN> phi_slots{};  ///< per column c: Φ_q at (row, c), then Φ_qᵀ at (c, row)
+  std::array<Index, kN * kN> hessian_slots{};  ///< (c_i, c_j) at [kN j + i] for i, j < count
+};
+
 /// One rigid body: coordinates [first_coordinate, … + 12) = [r_O, a₁, a₂, a₃].
 struct BodyData {
   std::string name;
@@ -70,7 +82,7 @@ struct BodyData {
 };
 
 /// A named constraint: rows [first_row, first_row + row_count) of the system (multiplier indices),
-/// row r of the model being rows()[r − coordinate_count()].
+/// row r of the model being rows()[r − coordinate_count()] or, past the dot rows, a twist row.
 struct ConstraintData {
   std::string name;
   Index first_row = 0;
@@ -92,14 +104,19 @@ class ModelBuilder;
 class Model {
  public:
   [[nodiscard]] Index coordinate_count() const { return n_coordinates_; }
-  [[nodiscard]] Index multiplier_count() const { return static_cast<Index>(rows_.size()); }
+  [[nodiscard]] Index multiplier_count() const {
+    return static_cast<Index>(rows_.size() + twist_rows_.size());
+  }
   [[nodiscard]] Index system_size() const { return n_coordinates_ + multiplier_count(); }
 
   [[nodiscard]] const std::vector<CableData>& cables() const { return cables_; }
   [[nodiscard]] const std::vector<BodyData>& bodies() const { return bodies_; }
   [[nodiscard]] const std::vector<DrivenFrame>& frames() const { return frames_; }
   [[nodiscard]] const std::vector<ConstraintData>& constraints() const { return constraints_; }
+  /// The bilinear rows: multipliers [0, rows().size()).
   [[nodiscard]] const std::vector<DotConstraintRow>& rows() const { return rows_; }
+  /// The rod twist rows: multipliers [rows().size(), multiplier_count()).
+  [[nodiscard]] const std::vector<RodTwistRowData>& twist_rows() const { return twist_rows_; }
   [[nodiscard]] const std::vector<ForceElementData<SpringDamper>>& spring_dampers() const {
     return springs_;
   }
@@ -177,6 +194,7 @@ class Model {
   std::vector<DrivenFrame> frames_;
   std::vector<ConstraintData> constraints_;
   std::vector<DotConstraintRow> rows_;
+  std::vector<RodTwistRowData> twist_rows_;
   std::vector<ForceElementData<SpringDamper>> springs_;
   std::vector<ForceElementData<PointForce>> point_forces_;
   std::vector<ForceElementData<BodyTorque>> torques_;

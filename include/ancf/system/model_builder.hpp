@@ -128,6 +128,13 @@ class ModelBuilder {
   /// Two rod nodes share their twist angle (1 row); with join_nodes(…, slopes = true) the two
   /// material triads coincide, provided their reference triads do (checked at finalize).
   void join_twist(std::string name, NodeRef a, NodeRef b);
+  /// Rod node's twist tied to a body (1 row, rod_twist_constraint.hpp): d₂·b = 0 with b the
+  /// body-fixed vector that is the node's material d₃ at the initial configuration. With
+  /// attach_node_to_body + align_slope_to_body the node's material triad is fixed in the body
+  /// (a clamp into the body including twist). Multipliers follow all dot rows.
+  void tie_twist_to_body(std::string name, NodeRef node, Index body);
+  /// The same with b fixed in a driven frame (rheonomic).
+  void tie_twist_to_frame(std::string name, NodeRef node, int frame);
   /// Two nodes share their position (3 rows) and, with `slopes`, their slope (3 more rows).
   void join_nodes(std::string name, NodeRef a, NodeRef b, bool slopes = false);
 
@@ -173,6 +180,11 @@ class ModelBuilder {
     std::string name;
     std::function<ConstraintRows(const Offsets&)> rows;
   };
+  struct PendingTwist {
+    std::string name;
+    NodeRef node;
+    std::function<AffineVector(const Offsets&)> b;
+  };
   struct RevoluteInfo {
     std::string name;
     Index base_body;  // −1: ground
@@ -188,6 +200,8 @@ class ModelBuilder {
   const PendingBody& body_at(Index body, const char* what) const;
   NodeRef resolve(NodeRef node, const char* what) const;
   const NodeCoordinates& initial_node(NodeRef node) const;
+  /// Material triad of a rod node at the initial configuration (α = 0, reference history).
+  Mat3 initial_rod_triad(NodeRef node, const char* what) const;
   void require_new_name(const std::string& name, const char* what) const;
   static AffineVector point_expression(const AttachmentPoint& p, const Offsets& o);
   Vec3 point_position(const AttachmentPoint& p) const;
@@ -207,6 +221,7 @@ class ModelBuilder {
   std::vector<PendingBody> bodies_;
   std::vector<DrivenFrame> frames_;
   std::vector<PendingConstraint> constraints_;
+  std::vector<PendingTwist> twists_;
   std::vector<RevoluteInfo> revolutes_;
   std::vector<PendingForce> forces_;
   std::vector<std::pair<NodeRef, Vec3>> node_forces_;
