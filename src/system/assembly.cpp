@@ -306,10 +306,12 @@ Workspace::Workspace(const Model& model)
     : frames(model.frames().size()),
       rods(RodHistory::initial(model)),
       element_boxes(model.cables().size()),
+      element_deviations(model.cables().size()),
       cable_boxes(model.cables().size()),
       element_boxes_current(model.cables().size(), 0) {
   auto reserve = [&](Index cable) {
     element_boxes[cable].resize(model.cables()[cable].elements.size());
+    element_deviations[cable].resize(model.cables()[cable].elements.size());
   };
   std::size_t most = 0;
   for (const auto& c : model.cable_shape_contacts()) reserve(c.cable);

@@ -18,6 +18,12 @@ double round_off(const Aabb& box) {
 
 }  // namespace
 
+double chord_deviation(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3) {
+  // Distances to the chord's third points, ≥ those to the chord; equal to zero for a straight,
+  // uniformly parametrized element (P1, P2 at the thirds).
+  return std::max((p1 - (2.0 * p0 + p3) / 3.0).norm(), (p2 - (p0 + 2.0 * p3) / 3.0).norm());
+}
+
 double ElementHull::farthest_from(const Vec3& x) const {
   return std::max({(start - x).norm(), (p1 - x).norm(), (p2 - x).norm(), (end - x).norm()});
 }
@@ -28,8 +34,7 @@ ElementHull element_hull(const Vec12& e, double length) {
   h.end = e.segment<3>(6);
   h.p1 = h.start + (length / 3.0) * e.segment<3>(3);
   h.p2 = h.end - (length / 3.0) * e.segment<3>(9);
-  h.deviation =
-      std::max(segment_distance(h.p1, h.start, h.end), segment_distance(h.p2, h.start, h.end));
+  h.deviation = chord_deviation(h.start, h.p1, h.p2, h.end);
   for (const Vec3* p : {&h.start, &h.p1, &h.p2, &h.end}) h.box.extend(*p);
   return h;
 }

@@ -6,7 +6,9 @@
 // P1 = r_i + l r_i,x/3, P2 = r_j − l r_j,x/3, P3 = r_j, hence in their box, and within
 // δ = max(dist(P1, [P0, P3]), dist(P2, [P0, P3])) of its chord [P0, P3] (the distance to a convex
 // set is a convex function, zero at P0 and P3). So the distance from any centreline point to a
-// set is at least the chord's distance minus δ, and at least the box's distance.
+// set is at least the chord's distance minus δ, and at least the box's distance. δ is bounded by
+// the distances of P1, P2 from the chord's third points (chord_deviation: no projection needed,
+// and zero for a straight element parametrized uniformly).
 #pragma once
 
 #include "ancf/physics/cable_contact.hpp"
@@ -23,6 +25,9 @@ struct ElementHull {
   Vec3 p1 = Vec3::Zero(), p2 = Vec3::Zero();
 };
 [[nodiscard]] ElementHull element_hull(const Vec12& e, double length);
+/// max(|P1 − (2P0 + P3)/3|, |P2 − (P0 + 2P3)/3|) ≥ δ.
+[[nodiscard]] double chord_deviation(const Vec3& p0, const Vec3& p1, const Vec3& p2,
+                                     const Vec3& p3);
 
 /// Euclidean distances: box–box, point–box, point–segment, segment–segment (0 when they meet).
 [[nodiscard]] double box_distance(const Aabb& a, const Aabb& b);

@@ -75,6 +75,7 @@ void refresh_cable_boxes(const Model& model, const SystemState& state, Workspace
       Aabb& box = ws.element_boxes[c][j];
       box.lower = start.cwiseMin(a).cwiseMin(b).cwiseMin(end);
       box.upper = start.cwiseMax(a).cwiseMax(b).cwiseMax(end);
+      ws.element_deviations[c][j] = -1.0;  // computed on demand (stored_hull)
       lower = lower.cwiseMin(box.lower);
       upper = upper.cwiseMax(box.upper);
     }
@@ -100,6 +101,25 @@ const std::vector<Aabb>& element_boxes_of(const Model& model, const SystemState&
 }
 
 namespace {
+
+// The hull of element j of cable c from the boxes of the last refresh_cable_boxes (which must have
+// been at `state`); its chord deviation is computed at the first request after the refresh.
+ElementHull stored_hull(const Model& model, const SystemState& state, Workspace& ws, Index c,
+                        Index j) {
+  const CableData& cable = model.cables()[c];
+  const Index base = cable.first_coordinate + 6 * j;
+  const double third = cable.elements[j].length / 3.0;
+  ElementHull h;
+  h.start = state.q.segment<3>(base);
+  h.end = state.q.segment<3>(base + 6);
+  h.p1 = h.start + third * state.q.segment<3>(base + 3);
+  h.p2 = h.end - third * state.q.segment<3>(base + 9);
+  double& deviation = ws.element_deviations[c][j];
+  if (deviation < 0.0) deviation = chord_deviation(h.start, h.p1, h.p2, h.end);
+  h.deviation = deviation;
+  h.box = ws.element_boxes[c][j];
+  return h;
+}
 
 CableSample sample_of(const CableData& cable, Index element, int k, int samples,
                       const SystemState& state) {
@@ -141,8 +161,7 @@ void visit_cable_shape(const Model& model, const SystemState& state, Workspace& 
     // (contact_bounds.hpp) has no active sample.
     if (hull_test) {
       if (!hull_bound) hull_bound.emplace(shape.shape, pose);
-      if ((*hull_bound)(element_hull(state.q.segment<12>(cable.first_coordinate + 6 * j),
-                                     cable.elements[j].length)) >= cable.section.radius)
+      if ((*hull_bound)(stored_hull(model, state, ws, c.cable, j)) >= cable.section.radius)
         continue;
     }
     blocks.first_a = cable.first_coordinate + 6 * j;
@@ -192,16 +211,12 @@ void visit_cable_cable(const Model& model, const SystemState& state, Workspace& 
         // Second level: element pairs whose centrelines provably stay ≥ reach apart
         // (contact_bounds.hpp) have no active sample and do not change the closest element.
         const ElementHull hull_i =
-            ws.hull_broad_phase ? element_hull(state.q.segment<12>(a.first_coordinate + 6 * i),
-                                               a.elements[i].length)
-                                : ElementHull{};
+            ws.hull_broad_phase ? stored_hull(model, state, ws, c.cable_a, i) : ElementHull{};
         for (Index lj = 0; lj < nb; ++lj) {
           const Index j = c.first_b + lj;
           if (!box_i.overlaps((*boxes_b)[j])) continue;
           if (ws.hull_broad_phase &&
-              hull_distance_bound(hull_i,
-                                  element_hull(state.q.segment<12>(b.first_coordinate + 6 * j),
-                                               b.elements[j].length)) >= reach)
+              hull_distance_bound(hull_i, stored_hull(model, state, ws, c.cable_b, j)) >= reach)
             continue;
           ws.candidates.push_back(lj);
         }

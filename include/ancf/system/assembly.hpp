@@ -42,6 +42,10 @@ struct Workspace {
   // Contact scratch, sized here so that a time step allocates nothing: element and cable boxes
   // of the cables in contact pairs (empty for the others), candidate elements, one sample result.
   std::vector<std::vector<Aabb>> element_boxes;
+  /// Per element of those cables: largest distance of its inner control points from its chord
+  /// (the hull bound of the broad phase, contact_bounds.hpp); reset with element_boxes, computed
+  /// on demand (< 0: not yet).
+  std::vector<std::vector<double>> element_deviations;
   std::vector<Aabb> cable_boxes;
   std::vector<char> element_boxes_current;  ///< per cable: element_boxes valid for this call
   std::vector<Index> candidates;
