@@ -104,6 +104,12 @@ void BM_ElementForce(benchmark::State& state, Formulation f) {
   run_element(state, f, CableEvalRequest{});
 }
 
+// The same with the pointwise kernel of the matrix path (CableForceKernel::pointwise, the
+// force-only kernel before the invariant one): the ratio of the two is what the residual gains.
+void BM_ElementForcePointwise(benchmark::State& state, Formulation f) {
+  run_element(state, f, CableEvalRequest{.force_kernel = ancf::CableForceKernel::pointwise});
+}
+
 // Force + tangent stiffness ∂f/∂e: what the static Jacobian assembly does per element.
 void BM_ElementForceTangent(benchmark::State& state, Formulation f) {
   run_element(state, f, CableEvalRequest{.stiffness = true});
@@ -128,3 +134,11 @@ BENCHMARK_CAPTURE(BM_ElementForce, elastic_line_axial, Formulation::elastic_line
 BENCHMARK_CAPTURE(BM_ElementForce, green_bending, Formulation::green_bending);
 BENCHMARK_CAPTURE(BM_ElementForce, elastic_line_bending, Formulation::elastic_line_bending);
 BENCHMARK_CAPTURE(BM_ElementForce, green_bending_damped, Formulation::green_bending_damped);
+
+BENCHMARK_CAPTURE(BM_ElementForcePointwise, green_axial, Formulation::green_axial);
+BENCHMARK_CAPTURE(BM_ElementForcePointwise, elastic_line_axial, Formulation::elastic_line_axial);
+BENCHMARK_CAPTURE(BM_ElementForcePointwise, green_bending, Formulation::green_bending);
+BENCHMARK_CAPTURE(BM_ElementForcePointwise, elastic_line_bending,
+                  Formulation::elastic_line_bending);
+BENCHMARK_CAPTURE(BM_ElementForcePointwise, green_bending_damped,
+                  Formulation::green_bending_damped);

@@ -1,5 +1,6 @@
 // Cost of the Kirchhoff rod element (kirchhoff_rod_element.hpp) against the cable element on the
-// same helix element: force only, and force + tangent. Ratios are only meaningful within one run.
+// same helix element: force only, and force + tangent, for both rod kernels (RodKernel). Ratios are
+// only meaningful within one run.
 #include <benchmark/benchmark.h>
 
 #include "ancf/physics/cable_element.hpp"
@@ -49,12 +50,18 @@ void BM_RodElement(benchmark::State& state) {
   e << s.e, 0.05, -0.03;
   RodElementResult out;
   const bool tangent = state.range(0) != 0;
+  const RodKernel kernel = state.range(1) != 0 ? RodKernel::element_jets : RodKernel::local_chain;
   for (auto _ : state) {
-    evaluate_rod_element(section, ref, h, e, Vec14::Zero(), {.stiffness = tangent}, out);
+    evaluate_rod_element(section, ref, h, e, Vec14::Zero(),
+                         {.stiffness = tangent, .kernel = kernel}, out);
     benchmark::DoNotOptimize(out.force.data());
     benchmark::DoNotOptimize(out.stiffness.data());
   }
 }
-BENCHMARK(BM_RodElement)->ArgName("tangent")->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+// kernel 0: RodKernel::local_chain (default), 1: RodKernel::element_jets (the original).
+BENCHMARK(BM_RodElement)
+    ->ArgNames({"tangent", "kernel"})
+    ->ArgsProduct({{0, 1}, {0, 1}})
+    ->Unit(benchmark::kMicrosecond);
 
 }  // namespace

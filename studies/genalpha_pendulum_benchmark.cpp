@@ -14,6 +14,7 @@
 // Usage: ancf-bench-genalpha [--elements N] [--step H] [--rho R] [--runs K] [--rtol TOL]
 //                            [--reuse-rate R] [--extrapolate] [--no-reference] [--profile]
 //                            [--pivot-growth]   (KLU refactorization check of 3e3daf4)
+//                            [--pointwise-force] (force-only cable kernel of 3e3daf4)
 #include <fmt/format.h>
 #include <algorithm>
 #include <array>
@@ -44,8 +45,15 @@ struct Run {
   double seconds = 0.0;  // wall time of advance_to over [0, 1] (initialize excluded)
 };
 
-Run simulate(const ancf::Model& model, const GeneralizedAlphaOptions& options) {
+// Old kernels selectable for side-by-side timing (same results up to round-off).
+struct Kernels {
+  ancf::CableForceKernel force = ancf::CableForceKernel::invariant;
+};
+
+Run simulate(const ancf::Model& model, const GeneralizedAlphaOptions& options,
+             const Kernels& kernels = {}) {
   ancf::MultibodyProblem problem(model);
+  problem.set_cable_force_kernel(kernels.force);
   GeneralizedAlphaStepper stepper(problem, options);
   stepper.initialize(0.0);
   const Index tip = model.node_coordinate(0, -1);
@@ -62,8 +70,10 @@ Run simulate(const ancf::Model& model, const GeneralizedAlphaOptions& options) {
 
 // Cost of the building blocks of one Newton iteration at the initial state (median of 2000 calls):
 // where the time per step goes.
-void profile_kernels(const ancf::Model& model, const GeneralizedAlphaOptions& options) {
+void profile_kernels(const ancf::Model& model, const GeneralizedAlphaOptions& options,
+                     const Kernels& kernels) {
   ancf::MultibodyProblem problem(model);
+  problem.set_cable_force_kernel(kernels.force);
   GeneralizedAlphaStepper stepper(problem, options);
   stepper.initialize(0.0);
   const auto q = ancf::as_span(stepper.positions()), v = ancf::as_span(stepper.velocities());
@@ -109,6 +119,7 @@ int main(int argc, char** argv) {
   bool extrapolate = false;
   int runs = 9;
   bool reference = true, profile = false, pivot_growth = false;
+  Kernels kernels;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     auto value = [&]() -> const char* {
@@ -138,12 +149,14 @@ int main(int argc, char** argv) {
       profile = true;
     else if (arg == "--pivot-growth")
       pivot_growth = true;
+    else if (arg == "--pointwise-force")
+      kernels.force = ancf::CableForceKernel::pointwise;
     else {
-      std::fprintf(
-          stderr,
-          "usage: %s [--elements N] [--step H] [--rho R] [--runs K] [--rtol TOL] "
-          "[--reuse-rate R] [--extrapolate] [--no-reference] [--profile] [--pivot-growth]\n",
-          argv[0]);
+      std::fprintf(stderr,
+                   "usage: %s [--elements N] [--step H] [--rho R] [--runs K] [--rtol TOL] "
+                   "[--reuse-rate R] [--extrapolate] [--no-reference] [--profile] [--pivot-growth] "
+                   "[--pointwise-force]\n",
+                   argv[0]);
       return 2;
     }
   }
@@ -165,7 +178,7 @@ int main(int argc, char** argv) {
   std::vector<double> seconds;
   Run last;
   for (int r = 0; r < runs; ++r) {
-    last = simulate(model, fast);
+    last = simulate(model, fast, kernels);
     seconds.push_back(last.seconds);
   }
   std::sort(seconds.begin(), seconds.end());
@@ -193,7 +206,7 @@ int main(int argc, char** argv) {
     fmt::print("tip at t = {:.2f} s: ({:+.9f}, {:+.9f}, {:+.9f}) m\n", kOutputTimes[k],
                last.tip[k].x(), last.tip[k].y(), last.tip[k].z());
 
-  if (profile) profile_kernels(model, fast);
+  if (profile) profile_kernels(model, fast, kernels);
   if (reference) {
     GeneralizedAlphaOptions tight = fast;
     tight.newton = ancf::NewtonStrategy::full;

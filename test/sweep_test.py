@@ -1,7 +1,8 @@
 """`ancf sweep` end to end on a tiny scene (test/scenes/sweep/): worker processes and MPI give the
 same table; a sweep killed mid-way resumes without rerunning finished cases; failing cases (the
-scene rejects a value, the time limit, a crashing process) are recorded and do not stop the good
-ones. Usage: sweep_test.py ANCF WORKDIR {mpi MPIRUN | resume | failing}"""
+scene rejects a value, the time limit, a crashing process, a solver failure) are recorded with
+their messages and do not stop the good ones.
+Usage: sweep_test.py ANCF WORKDIR {mpi MPIRUN | resume | failing}"""
 import csv
 import os
 import shutil
@@ -77,11 +78,15 @@ elif WHAT == "failing":
     out = os.path.join(WORK, "failing")
     sweep("failing.toml", out, "-j", "2", "--ancf", os.path.join(HERE, "crashing_ancf.sh"), env=env)
     rows = {r["note"]: r for r in table(out)}
-    check([r["status"] for r in table(out)] == ["completed", "error", "timeout", "crashed", "completed"],
-          f"statuses {[r['status'] for r in table(out)]}")
+    statuses = [r["status"] for r in table(out)]
+    check(statuses == ["completed", "error", "timeout", "crashed", "failed", "completed"],
+          f"statuses {statuses}")
     check("cable[0].section.E" in rows["bad E"]["message"], rows["bad E"]["message"])
     check("time limit" in rows["too long"]["message"], rows["too long"]["message"])
     check("signal 11" in rows["crash me"]["message"], rows["crash me"]["message"])
+    failed = rows["solver fails"]["message"]
+    check("local error estimate" in failed and "h_min" in failed, failed)
+    check(rows["solver fails"]["t_reached"] == "0", f"solver failure at t = 0: {rows['solver fails']}")
     check(rows["good"]["counters.steps"] == "50", "good cases ran to the end")
 else:
     sys.exit("unknown test " + WHAT)

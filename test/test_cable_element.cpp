@@ -199,11 +199,62 @@ TEST(CableElement, ForceOnlyRequestGivesTheSameForceAndEnergy) {
   for (const Case& c : make_cases()) {
     const CableElementResult full = evaluate(c.section, c.ref, c.e, c.e_dot);
     CableElementResult force_only;
-    evaluate_cable_element(c.section, c.ref, c.e, c.e_dot, {}, force_only);
+    evaluate_cable_element(c.section, c.ref, c.e, c.e_dot,
+                           {.force_kernel = CableForceKernel::pointwise}, force_only);
     EXPECT_LE((force_only.force - full.force).norm(), 4 * kEps * full.force.norm()) << c.detail;
     EXPECT_LE(std::abs(force_only.energy - full.energy), 4 * kEps * std::abs(full.energy))
         << c.detail;
   }
+}
+
+TEST(CableElement, InvariantForceKernelGivesTheSameForceAndEnergy) {
+  // CableForceKernel::invariant (the default of force-only requests) evaluates the same formulas
+  // through s₁ = a·a, s₂ = a·b, s₃ = b·b on translation-free coordinates: the force and energy of
+  // the pointwise kernel up to round-off, and the nodal position forces cancel exactly. The
+  // pointwise kernel forms r_x from the absolute positions (cancellation of order |r|/l in a, and
+  // of a·a − J₀² in ε); it is compared here at the element translated to r_i = 0, where that
+  // round-off is absent (the force is translation invariant).
+  double worst_force = 0.0, worst_energy = 0.0;
+  for (const Case& c : make_cases()) {
+    CableElementResult pointwise, invariant;
+    Vec12 moved = c.e;
+    moved.segment<3>(6) -= c.e.segment<3>(0);
+    moved.segment<3>(0).setZero();
+    evaluate_cable_element(c.section, c.ref, moved, c.e_dot,
+                           {.force_kernel = CableForceKernel::pointwise}, pointwise);
+    evaluate_cable_element(c.section, c.ref, c.e, c.e_dot, {}, invariant);
+    const double df = (invariant.force - pointwise.force).norm() / pointwise.force.norm();
+    const double de = std::abs(invariant.energy - pointwise.energy) / std::abs(pointwise.energy);
+    EXPECT_LE(df, 16 * kEps) << c.detail;
+    EXPECT_LE(de, 16 * kEps) << c.detail;
+    EXPECT_EQ(invariant.force.segment<3>(0), (-invariant.force.segment<3>(6)).eval()) << c.detail;
+    worst_force = std::max(worst_force, df);
+    worst_energy = std::max(worst_energy, de);
+  }
+  std::printf(
+      "invariant vs pointwise force kernel: max relative difference force %.2e, energy "
+      "%.2e\n",
+      worst_force, worst_energy);
+}
+
+TEST(CableElement, InvariantForceIsEnergyGradient) {
+  // The invariant kernel checked on its own against central differences of its energy.
+  std::map<std::string, fdcheck::Result> worst;
+  for (const Case& c : make_cases()) {
+    CableSection elastic = c.section;
+    elastic.axial_damping = elastic.bending_damping = 0.0;
+    if (elastic.axial_stiffness == 0.0 && elastic.bending_stiffness == 0.0) continue;
+    auto force_only = [&](const Vec12& e) {
+      CableElementResult out;
+      evaluate_cable_element(elastic, c.ref, e, Vec12::Zero(), {}, out);
+      return out;
+    };
+    const auto energy = [&](const VecX& e) { return force_only(Vec12(e)).energy; };
+    const fdcheck::Result r = fdcheck::check_gradient(energy, c.e, force_only(c.e).force);
+    EXPECT_TRUE(r.ok()) << c.detail << ": " << describe(r);
+    worst[c.label].merge(r);
+  }
+  print_table("invariant force vs dU/de", worst);
 }
 
 TEST(CableElement, DampingMatrixIsForceVelocityJacobian) {

@@ -259,6 +259,35 @@ TEST(KirchhoffRod, StiffnessAndDampingMatrices) {
   }
 }
 
+// The two kernels (RodKernel): same operations for the values, so energy and strains are bitwise
+// equal; force, tangent and damping matrix agree to round-off.
+TEST(KirchhoffRod, LocalChainKernelEqualsElementJets) {
+  for (const bool damping : {false, true}) {
+    const RodSection s = section(damping);
+    for (const FdCase& c : fd_cases()) {
+      for (const bool k : {false, true}) {
+        RodElementResult local, full;
+        evaluate_rod_element(s, c.ref, c.history, c.e, c.e_dot,
+                             {.stiffness = k, .damping_matrix = damping}, local);
+        evaluate_rod_element(
+            s, c.ref, c.history, c.e, c.e_dot,
+            {.stiffness = k, .damping_matrix = damping, .kernel = RodKernel::element_jets}, full);
+        EXPECT_EQ(local.energy, full.energy) << c.name;
+        EXPECT_EQ(local.strain_mid, full.strain_mid) << c.name;
+        EXPECT_LE((local.force - full.force).norm(), 16 * kEps * full.force.norm()) << c.name;
+        if (k) {
+          EXPECT_LE((local.stiffness - full.stiffness).norm(), 64 * kEps * full.stiffness.norm())
+              << c.name << " damping " << damping;
+        }
+        if (damping) {
+          EXPECT_LE((local.damping - full.damping).norm(), 16 * kEps * full.damping.norm())
+              << c.name;
+        }
+      }
+    }
+  }
+}
+
 // ω stays continuous across ±π: a rigid rotation of node 2's reference history by 2π·k + small
 // about its tangent changes nothing physical, so the energy must not jump.
 TEST(KirchhoffRod, OmegaIsTrackedWithoutWrap) {

@@ -50,9 +50,12 @@ TEST(SweepDesign, GridIsNestedLoopsLastParameterFastest) {
 
 TEST(SweepDesign, ListPairsValuesAndTextValuesAreInsertedAsWritten) {
   const SweepSpec s = load_sweep((kSweeps / "failing.toml").string());
-  ASSERT_EQ(s.cases.size(), 5u);
-  EXPECT_EQ(s.cases[2].shown, (std::vector<std::string>{"1", "10000", "too long"}));
-  EXPECT_EQ(s.cases[3].overrides[2].value, "\"crash me\"");
+  ASSERT_EQ(s.cases.size(), 6u);  // good, error, timeout, crash, solver failure, good
+  EXPECT_EQ(s.cases[2].shown, (std::vector<std::string>{"1", "10000", "too long", "\"fixed\""}));
+  // The sweep-wide `set` entries come first (three), then one override per parameter.
+  ASSERT_EQ(s.cases[3].overrides.size(), 7u);
+  EXPECT_EQ(s.cases[3].overrides[2].value, "2e-3");
+  EXPECT_EQ(s.cases[3].overrides[5].value, "\"crash me\"");
   EXPECT_EQ(s.time_limit, 1.5);
 }
 

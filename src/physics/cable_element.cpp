@@ -1,11 +1,13 @@
 #include "ancf/physics/cable_element.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <utility>
 
 #include "ancf/core/error.hpp"
 #include "ancf/physics/hermite_shape.hpp"
+#include "cable_force_invariant.hpp"
 
 namespace ancf {
 namespace {
@@ -15,9 +17,7 @@ using Mat34 = Eigen::Matrix<double, 3, 4>;
 // Reference curvatures below this angle per element (κ₀ l) are round-off of a straight
 // reference and are set to zero, which selects the smooth κ² branch of the bending energy.
 constexpr double kStraightReferenceAngle = 1e-10;
-// Below this fraction of κ₀ the current curvature direction is undefined (κ − κ₀ is not
-// differentiable at κ = 0); the κ₀-terms are dropped there (a subgradient choice).
-constexpr double kVanishingCurvatureRatio = 1e-8;
+using detail::kVanishingCurvatureRatio;
 
 /// Axial strain and its first two derivatives with respect to a = r_x at one Gauss point.
 struct AxialStrain {
@@ -313,6 +313,15 @@ CableElementReference CableElementReference::from_reference(const Vec12& e0, dou
       if (kappa0 * length <= kStraightReferenceAngle) kappa0 = 0.0;
       points->kappa0[g] = kappa0;
     }
+    for (int g = 0; g < kMaxCableGaussPoints; ++g) {
+      const int src = std::min(g, count - 1);
+      points->lane_d1.col(g) = points->d1[src].tail<3>();
+      points->lane_d2.col(g) = points->d2[src].tail<3>();
+      points->lane_weight[g] = g < count ? points->weight[g] : 0.0;
+      points->lane_inv_j0[g] = points->inv_j0[src];
+      points->lane_kappa0[g] = points->kappa0[src];
+    }
+    points->straight = (points->lane_kappa0 == 0.0).all();
   }
   return ref;
 }
@@ -337,6 +346,8 @@ void evaluate_cable_element(const CableSection& section, const CableElementRefer
   };
   if (request.stiffness)
     run.template operator()<true>();
+  else if (!request.damping_matrix && request.force_kernel == CableForceKernel::invariant)
+    detail::evaluate_cable_force_invariant(section, ref, e, e_dot, out);
   else
     run.template operator()<false>();
 }

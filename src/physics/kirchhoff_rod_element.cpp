@@ -10,136 +10,12 @@
 #include "ancf/core/gauss_legendre.hpp"
 #include "ancf/physics/hermite_shape.hpp"
 #include "ancf/physics/jet.hpp"
+#include "kirchhoff_rod_local_chain.hpp"
+#include "kirchhoff_rod_strains.hpp"
 
 namespace ancf {
 namespace {
-
-// 1 + (source tangent)·(target tangent) below this: the smallest rotation is (nearly) undefined.
-constexpr double kSrDenominatorMin = 1e-8;
-
-// A 3-vector of a scalar type T (double or a jet); only the operations the strains need.
-template <class T>
-struct V3 {
-  T x, y, z;
-};
-template <class T>
-V3<T> operator+(const V3<T>& a, const V3<T>& b) {
-  return {a.x + b.x, a.y + b.y, a.z + b.z};
-}
-template <class T>
-V3<T> operator-(const V3<T>& a, const V3<T>& b) {
-  return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-template <class T, class S>
-V3<T> scale(const S& s, const V3<T>& a) {
-  return {s * a.x, s * a.y, s * a.z};
-}
-template <class T>
-T dot(const V3<T>& a, const V3<T>& b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-template <class T>
-V3<T> cross(const V3<T>& a, const V3<T>& b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-template <class T>
-V3<T> constant(const Vec3& c) {
-  return {T(c.x()), T(c.y()), T(c.z())};
-}
-
-// Column k of SR(source → g) for unit g, source columns (s1, s_k):
-//   s_k − (s_k·g)/(1 + s1·g) (g + s1)        (Meier et al. 2014; 4C calculate_sr_triads).
-template <class T>
-V3<T> sr_column(const V3<T>& s1, const V3<T>& sk, const V3<T>& g, const T& inv_denominator) {
-  return sk - scale(dot(sk, g) * inv_denominator, g + s1);
-}
-
-template <class T>
-T checked_inverse_denominator(const T& denominator, const char* where) {
-  if (!(value_of(denominator) > kSrDenominatorMin))
-    throw std::domain_error(std::string("Kirchhoff rod: ") + where +
-                            " turned against its smallest-rotation source (1 + t·t_ref = " +
-                            std::to_string(value_of(denominator)) + ")");
-  return 1.0 / denominator;
-}
-
-template <class T>
-V3<T> block(const std::array<T, 14>& e, int k) {
-  return {e[3 * k], e[3 * k + 1], e[3 * k + 2]};
-}
-
-// Element-level frame data: node 1's unit tangent and untwisted triad, ζ = α₂ + ω.
-template <class T>
-struct ElementFrame {
-  V3<T> t1, n2, n3;
-  T zeta, omega;
-};
-
-template <class T>
-ElementFrame<T> element_frame(const RodElementHistory& h, const std::array<T, 14>& e) {
-  using std::atan2;
-  using std::sqrt;
-  const V3<T> t1 = block(e, 1), t2 = block(e, 3);
-  const T inv1 = 1.0 / sqrt(dot(t1, t1)), inv2 = 1.0 / sqrt(dot(t2, t2));
-  const V3<T> u1 = scale(inv1, t1), u2 = scale(inv2, t2);
-  // Λ̄ᵢ = SR(Rᵢ → t̂ᵢ)
-  const V3<T> r11 = constant<T>(h.frame1.col(0)), r12 = constant<T>(h.frame1.col(1)),
-              r13 = constant<T>(h.frame1.col(2));
-  const T i1 = checked_inverse_denominator(1.0 + dot(r11, u1), "node 1 tangent");
-  const V3<T> n12 = sr_column(r11, r12, u1, i1), n13 = sr_column(r11, r13, u1, i1);
-  const V3<T> r21 = constant<T>(h.frame2.col(0)), r22 = constant<T>(h.frame2.col(1));
-  const T i2 = checked_inverse_denominator(1.0 + dot(r21, u2), "node 2 tangent");
-  const V3<T> n22 = sr_column(r21, r22, u2, i2);
-  // SR(Λ̄₁ → t̂₂) and the angle ω about t̂₂ from it to Λ̄₂.
-  const T i12 = checked_inverse_denominator(1.0 + dot(u1, u2), "element end tangent");
-  const V3<T> m2 = sr_column(u1, n12, u2, i12), m3 = sr_column(u1, n13, u2, i12);
-  T omega = atan2(dot(n22, m3), dot(n22, m2));
-  // Continuous from the committed value: add the multiple of 2π nearest to it.
-  omega = omega + 2.0 * std::numbers::pi *
-                      std::round((h.omega - value_of(omega)) / (2.0 * std::numbers::pi));
-  return {u1, n12, n13, e[13] + omega, omega};
-}
-
-// Strains (ε, K₁, K₂, K₃) at Gauss point p.
-// The shape-function data of one point ξ of an element of length l.
-struct PointData {
-  Vec4 d1, d2;
-  double inv_j0, xi, length;
-};
-
-// Material triad columns d₂, d₃ at a point (filled by point_strains on request).
-template <class T>
-struct PointTriad {
-  V3<T> g1, g2, g3;
-};
-
-template <class T>
-std::array<T, 4> point_strains(const PointData& pd, const ElementFrame<T>& f,
-                               const std::array<T, 14>& e, PointTriad<T>* triad = nullptr) {
-  using std::cos;
-  using std::sin;
-  using std::sqrt;
-  V3<T> a = scale(pd.d1[0], block(e, 0)), b = scale(pd.d2[0], block(e, 0));
-  for (int k = 1; k < 4; ++k) {
-    a = a + scale(pd.d1[k], block(e, k));
-    b = b + scale(pd.d2[k], block(e, k));
-  }
-  const double ij = pd.inv_j0, xi = pd.xi;
-  const T saa = dot(a, a);
-  const T na = sqrt(saa);
-  const V3<T> g = scale(1.0 / na, a);
-  const V3<T> kappa = scale(1.0 / saa, cross(a, b));  // κ = r_x × r_xx / |r_x|² (per dx)
-  const T ic = checked_inverse_denominator(1.0 + dot(f.t1, g), "centreline tangent");
-  const V3<T> g2 = sr_column(f.t1, f.n2, g, ic), g3 = sr_column(f.t1, f.n3, g, ic);
-  const T k2 = dot(kappa, g2), k3 = dot(kappa, g3);
-  const T alpha1 = e[12];
-  const T psi = (1.0 - xi) * alpha1 + xi * f.zeta;
-  const T c = cos(psi), s = sin(psi);
-  // K₁: ψ_x plus the twist rate of the SR frame, −(t̂₁·κ)/(1 + t̂₁·g₁).
-  const T k1 = (f.zeta - alpha1) * (1.0 / pd.length) - dot(f.t1, kappa) * ic;
-  if (triad) *triad = {g, scale(c, g2) + scale(s, g3), scale(c, g3) - scale(s, g2)};
-  return {na * ij - 1.0, k1 * ij, (c * k2 + s * k3) * ij, (c * k3 - s * k2) * ij};
-}
+using namespace rod_detail;
 
 template <class T>
 std::array<T, 14> to_array(const Vec14& e) {
@@ -151,10 +27,6 @@ std::array<T, 14> to_array(const Vec14& e) {
       out[i] = T::variable(e[i], i);
   }
   return out;
-}
-
-PointData point_data(const RodElementReference& ref, int p) {
-  return {ref.d1[p], ref.d2[p], ref.inv_j0[p], ref.xi[p], ref.length};
 }
 
 Vec3 to_vec3(const V3<double>& v) {
@@ -273,9 +145,13 @@ double rod_element_omega(const RodElementHistory& history, const Vec14& e) {
   return element_frame(history, to_array<double>(e)).omega;
 }
 
-void evaluate_rod_element(const RodSection& section, const RodElementReference& ref,
-                          const RodElementHistory& history, const Vec14& e, const Vec14& e_dot,
-                          const RodEvalRequest& request, RodElementResult& out) {
+namespace {
+
+// The original kernel: jets in all 14 element coordinates through every operation.
+void evaluate_with_element_jets(const RodSection& section, const RodElementReference& ref,
+                                const RodElementHistory& history, const Vec14& e,
+                                const Vec14& e_dot, const RodEvalRequest& request,
+                                RodElementResult& out) {
   const std::array<double, 4> stiff{section.axial_stiffness, section.torsional_stiffness,
                                     section.bending_stiffness_2, section.bending_stiffness_3};
   const std::array<double, 4> damp{section.axial_damping, section.torsional_damping,
@@ -321,6 +197,17 @@ void evaluate_rod_element(const RodSection& section, const RodElementReference& 
     run(Jet<14, true>{});
   else
     run(Jet<14, false>{});
+}
+
+}  // namespace
+
+void evaluate_rod_element(const RodSection& section, const RodElementReference& ref,
+                          const RodElementHistory& history, const Vec14& e, const Vec14& e_dot,
+                          const RodEvalRequest& request, RodElementResult& out) {
+  if (request.kernel == RodKernel::element_jets)
+    evaluate_with_element_jets(section, ref, history, e, e_dot, request, out);
+  else
+    rod_detail::evaluate_with_local_chain(section, ref, history, e, e_dot, request, out);
 }
 
 }  // namespace ancf

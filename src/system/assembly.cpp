@@ -341,7 +341,8 @@ void assemble_residual(const Model& model, const SystemState& state, double load
   for_each_element(
       model, state.q, state.v,
       [&](Index, Index j, const CableData& c, Index base, const Vec12& e, const Vec12& e_dot) {
-        evaluate_cable_element(c.section, c.elements[j], e, e_dot, {}, ws.element);
+        evaluate_cable_element(c.section, c.elements[j], e, e_dot,
+                               {.force_kernel = ws.cable_force_kernel}, ws.element);
         rq.segment<12>(base) += ws.element.force;
         if (inertia) add_mass_times(c.mass[j], base, state.a, rq);
         if (c.section.mass_damping > 0.0)

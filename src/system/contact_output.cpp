@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "contact_min_gap.hpp"
 #include "contact_sampling.hpp"
 
 namespace ancf {
@@ -35,15 +36,24 @@ class StateSink final : public detail::ContactSink {
 }  // namespace
 
 void contact_states(const Model& model, const SystemState& state, Workspace& ws,
-                    std::span<ContactPairState> out) {
+                    std::span<ContactPairState> out, ContactSearch search) {
   std::fill(out.begin(), out.end(), ContactPairState{});
   StateSink sink(out);
-  detail::visit_contact_samples(model, state, ws, {.jacobians = false, .all_samples = true}, sink);
+  // Exhaustive: every sample reaches the sink (its gaps give min_gap). Pruned: the broad phase
+  // lets through every active sample, in the same order (the resultants are the same sums), and
+  // refreshes the element boxes that the branch and bound of the minimum gaps needs.
+  const bool exhaustive = search == ContactSearch::exhaustive;
+  detail::visit_contact_samples(model, state, ws, {.jacobians = false, .all_samples = exhaustive},
+                                sink);
+  if (!exhaustive && model.contact_pair_count() > 0)
+    for (Index p = 0; p < model.contact_pair_count(); ++p)
+      out[static_cast<std::size_t>(p)].min_gap =
+          detail::sample_min_gap(model, state, ws, p, search);
   for (std::size_t k = 0; k < out.size(); ++k)
     out[k].centre = sink.weight(k) > 0.0 ? Vec3(out[k].centre / sink.weight(k)) : Vec3::Zero();
   for (Index p = 0; p < static_cast<Index>(model.cable_shape_contacts().size()); ++p)
     out[static_cast<std::size_t>(p)].min_centreline_gap =
-        detail::centreline_min_gap(model, state, ws, p);
+        detail::centreline_min_gap(model, state, ws, p, search);
 }
 
 ContactMonitor::ContactMonitor(const Model& model)

@@ -95,7 +95,6 @@ const std::vector<Aabb>& element_boxes_of(const Model& model, const SystemState&
 
 namespace {
 
-
 CableSample sample_of(const CableData& cable, Index element, int k, int samples,
                       const SystemState& state) {
   CableSample s;
@@ -214,52 +213,6 @@ void visit_cable_cable(const Model& model, const SystemState& state, Workspace& 
 }
 
 }  // namespace
-
-double centreline_min_gap(const Model& model, const SystemState& state, Workspace& ws, Index pair) {
-  const CableShapeContactData& c = model.cable_shape_contacts()[pair];
-  const ContactShapeData& shape = model.shapes()[c.shape];
-  const CableData& cable = model.cables()[c.cable];
-  const ShapeOwnerPose pose = owner_pose(shape, state, ws.frames_at(model, state.t));
-  // Scan each element at kScan + 1 points (ends included), then refine the smallest by a
-  // golden-section search on its two neighbouring intervals: the gap along a cubic centreline
-  // near a smooth convex shape is unimodal on that scale, and 60 reductions of 0.618 shrink the
-  // bracket below 1e-12 of the element.
-  constexpr int kScan = 16, kGoldenIterations = 60;
-  double smallest = std::numeric_limits<double>::infinity();
-  for (Index local = 0; local < c.count; ++local) {
-    const Index j = c.first + local;
-    const Vec12 e = state.q.segment<12>(cable.first_coordinate + 6 * j);
-    const double l = cable.elements[j].length;
-    auto gap = [&](double xi) {
-      const Vec4 s = hermite::values(xi, l);
-      Vec3 x = Vec3::Zero();
-      for (int n = 0; n < 4; ++n) x += s[n] * e.segment<3>(3 * n);
-      return signed_distance(shape.shape, pose.rotation.transpose() * (x - pose.origin)).distance -
-             cable.section.radius;
-    };
-    int best = 0;
-    double best_gap = gap(0.0);
-    for (int k = 1; k <= kScan; ++k)
-      if (const double g = gap(static_cast<double>(k) / kScan); g < best_gap)
-        best = k, best_gap = g;
-    double lo = std::max(0, best - 1) / static_cast<double>(kScan);
-    double hi = std::min(kScan, best + 1) / static_cast<double>(kScan);
-    constexpr double kInverseGolden = 0.6180339887498949;
-    double x1 = hi - kInverseGolden * (hi - lo), x2 = lo + kInverseGolden * (hi - lo);
-    double g1 = gap(x1), g2 = gap(x2);
-    for (int it = 0; it < kGoldenIterations; ++it) {
-      if (g1 < g2) {
-        hi = x2, x2 = x1, g2 = g1;
-        x1 = hi - kInverseGolden * (hi - lo), g1 = gap(x1);
-      } else {
-        lo = x1, x1 = x2, g1 = g2;
-        x2 = lo + kInverseGolden * (hi - lo), g2 = gap(x2);
-      }
-    }
-    smallest = std::min({smallest, best_gap, g1, g2});
-  }
-  return smallest;
-}
 
 void visit_contact_samples(const Model& model, const SystemState& state, Workspace& ws,
                            ContactVisit how, ContactSink& sink) {

@@ -64,10 +64,6 @@ inline Aabb inflated(Aabb box, double margin) {
   return box;
 }
 
-/// Smallest gap d − r over every point of the centreline of cable–shape pair `pair`'s candidate
-/// elements (not only at its samples) [m]: an output, not used by the contact forces.
-double centreline_min_gap(const Model& model, const SystemState& state, Workspace& ws, Index pair);
-
 /// Run the contact detection and kernels of every pair at `state`, feeding `sink`.
 void visit_contact_samples(const Model& model, const SystemState& state, Workspace& ws,
                            ContactVisit how, ContactSink& sink);

@@ -90,6 +90,13 @@ struct CableElementReference {
     std::array<double, kMaxCableGaussPoints> weight{};  ///< w_g · l · J₀_g (measure of J₀ dx)
     std::array<double, kMaxCableGaussPoints> inv_j0{};  ///< 1/J₀_g
     std::array<double, kMaxCableGaussPoints> kappa0{};  ///< κ₀ (per strain measure)
+    /// The same as columns, one Gauss point per column, for the invariant force kernel
+    /// (CableForceKernel): rows of d1, d2 are the entries 1…3 of d1[g], d2[g] (entry 0 is the
+    /// negative of entry 2 for Hermite shapes). Columns ≥ count repeat the last point with
+    /// weight 0, so that every column is finite and contributes nothing.
+    Eigen::Matrix<double, 3, kMaxCableGaussPoints> lane_d1, lane_d2;
+    Eigen::Array<double, 1, kMaxCableGaussPoints> lane_weight, lane_inv_j0, lane_kappa0;
+    bool straight = true;  ///< κ₀ = 0 at every point
   };
   double length = 0.0;  ///< l [m]
   Points axial;         ///< points of the axial terms
@@ -115,11 +122,22 @@ struct CableElementReference {
 ///   (docs/time_step_control.md, "Newton through contact").
 enum class CableTangent { exact, tension_only };
 
+/// How a force-only request (no matrix) is evaluated; both give the same force and energy up to
+/// round-off.
+/// * invariant: through the strain invariants s₁ = a·a, s₂ = a·b, s₃ = b·b, one rank-2 update of
+///   ∂U/∂E per Gauss point on the translation-free coordinates [r_i,x, r_j − r_i, r_j,x]
+///   (src/physics/cable_force_invariant.hpp); ≈ 3× fewer instructions.
+/// * pointwise: the gradients in (a, b) scattered point by point, as the matrix path does (the
+///   kernel of 3e3daf4 … issue 20).
+enum class CableForceKernel { invariant, pointwise };
+
 /// What to evaluate. Force and energy are always computed.
 struct CableEvalRequest {
   bool stiffness = false;  ///< ∂f/∂e (includes ∂(damping force)/∂e when damping is present)
   bool damping_matrix = false;                 ///< ∂f/∂ė
   CableTangent tangent = CableTangent::exact;  ///< what `stiffness` holds (CableTangent)
+  /// Kernel of a request without matrices (ignored when a matrix is requested).
+  CableForceKernel force_kernel = CableForceKernel::invariant;
 };
 
 /// Element results. Sign convention: f is the internal force F of M q'' + F = Q, i.e. ∂U/∂e plus

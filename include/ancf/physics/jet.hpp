@@ -108,6 +108,11 @@ Jet<N, S> operator/(Jet<N, S> a, double s) {
   return a *= 1.0 / s;
 }
 
+// The Hessian updates below run column by column (vectorised fixed-size columns) instead of Eigen
+// outer-product expressions, which compiled to out-of-line calls and temporaries (callgrind: half
+// of the rod tangent's instructions). Entry (i, j) adds b_j a_i + a_j b_i, entry (j, i) the same
+// two products in the same order, so a symmetric Hessian stays exactly symmetric.
+
 // (ab)'' = a b'' + b a'' + a' b'ᵀ + b' a'ᵀ
 template <int N, bool S>
 Jet<N, S> operator*(const Jet<N, S>& a, const Jet<N, S>& b) {
@@ -115,9 +120,8 @@ Jet<N, S> operator*(const Jet<N, S>& a, const Jet<N, S>& b) {
   c.v = a.v * b.v;
   c.g = a.v * b.g + b.v * a.g;
   if constexpr (S) {
-    c.h.noalias() = a.v * b.h + b.v * a.h;
-    c.h.noalias() += a.g * b.g.transpose();
-    c.h.noalias() += b.g * a.g.transpose();
+    for (int j = 0; j < N; ++j)
+      c.h.col(j) = a.v * b.h.col(j) + b.v * a.h.col(j) + (b.g[j] * a.g + a.g[j] * b.g);
   }
   return c;
 }
@@ -129,8 +133,8 @@ Jet<N, S> chain(const Jet<N, S>& u, double f, double f1, double f2) {
   c.v = f;
   c.g = f1 * u.g;
   if constexpr (S) {
-    c.h.noalias() = f1 * u.h;
-    c.h.noalias() += f2 * u.g * u.g.transpose();
+    const typename Jet<N, S>::Grad fg = f2 * u.g;
+    for (int j = 0; j < N; ++j) c.h.col(j) = f1 * u.h.col(j) + u.g[j] * fg;
   }
   return c;
 }
@@ -174,9 +178,11 @@ Jet<N, S> atan2(const Jet<N, S>& y, const Jet<N, S>& x) {
   c.g = fx * x.g + fy * y.g;
   if constexpr (S) {
     const double fxx = 2.0 * x.v * y.v / r4, fxy = (y.v * y.v - x.v * x.v) / r4;
-    c.h.noalias() = fx * x.h + fy * y.h;
-    c.h.noalias() += fxx * (x.g * x.g.transpose() - y.g * y.g.transpose());
-    c.h.noalias() += fxy * (x.g * y.g.transpose() + y.g * x.g.transpose());
+    for (int j = 0; j < N; ++j)
+      for (int i = j; i < N; ++i)
+        c.h(j, i) = c.h(i, j) = fx * x.h(i, j) + fy * y.h(i, j) +
+                                fxx * (x.g[i] * x.g[j] - y.g[i] * y.g[j]) +
+                                fxy * (x.g[i] * y.g[j] + y.g[i] * x.g[j]);
   }
   return c;
 }

@@ -71,9 +71,21 @@ struct RodElementReference {
                                             RodElementHistory& history);
 };
 
+/// How the element's derivatives are formed; both are exact and agree to round-off (the values,
+/// energy and strains are bitwise the same).
+enum class RodKernel {
+  /// Per Gauss point, jets in the 11 local variables (r_x, r_xx, t₁, α₁, ζ) chained to the
+  /// element coordinates by the point's linear map B and ζ's Hessian: K = Σ Bᵀ H B + c_ζ H_ζ.
+  local_chain,
+  /// Jets in all 14 element coordinates through every operation (the original kernel, kept for
+  /// comparison: test_kirchhoff_rod_element, bench_rod_element).
+  element_jets,
+};
+
 struct RodEvalRequest {
   bool stiffness = false;       ///< ∂f/∂e (includes ∂(damping force)/∂e)
   bool damping_matrix = false;  ///< ∂f/∂ė
+  RodKernel kernel = RodKernel::local_chain;
 };
 
 /// Sign convention as the cable's: f = ∂U/∂e plus the damping force (M q'' + f = Q).

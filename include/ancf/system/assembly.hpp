@@ -62,6 +62,8 @@ struct Workspace {
   double element_seconds = 0.0, contact_seconds = 0.0;
   /// Tangent of the cable kernels in iteration matrices (CableTangent; residuals are exact).
   CableTangent cable_tangent = CableTangent::exact;
+  /// Force-only kernel of the cable elements in residuals (CableForceKernel; same force).
+  CableForceKernel cable_force_kernel = CableForceKernel::invariant;
   explicit Workspace(const Model& model);
   /// Frame kinematics at t (recomputed only when t changes).
   std::span<const FrameKinematics> frames_at(const Model& model, double t);

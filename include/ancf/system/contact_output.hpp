@@ -1,6 +1,6 @@
 // Contact outputs (issue: per pair active flag, minimum gap, force resultants; per cable first
-// contact time). Computed on demand at output times, without the broad phase, so the minimum gap
-// is exact over all samples even for pairs that are far apart.
+// contact time). Computed on demand at output times; the minimum gaps are exact over all samples
+// (and the whole centreline) even for pairs that are far apart.
 #pragma once
 
 #include <limits>
@@ -27,9 +27,19 @@ struct ContactPairState {
   Vec3 centre = Vec3::Zero();
 };
 
+/// How contact_states finds the minimum gaps; both give the same numbers, bit for bit.
+enum class ContactSearch {
+  /// Active samples through the broad phase (those the residual sees); the minimum gaps by branch
+  /// and bound on the element boxes: elements that provably cannot hold a smaller gap than one
+  /// found are skipped (contact_min_gap.cpp). Default.
+  pruned,
+  /// Every sample of every pair and every element's centreline evaluated (the first design).
+  exhaustive,
+};
+
 /// States of every contact pair (model.contact_pair_count() entries, numbered as in Model).
 void contact_states(const Model& model, const SystemState& state, Workspace& ws,
-                    std::span<ContactPairState> out);
+                    std::span<ContactPairState> out, ContactSearch search = ContactSearch::pruned);
 
 /// Records the first time each pair and each cable is in contact, from the states at the times
 /// it is updated with (so the resolution is the caller's step or output interval).

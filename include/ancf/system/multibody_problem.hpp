@@ -66,6 +66,8 @@ class MultibodyProblem final : public SecondOrderProblem {
   /// Tangent of the cable elements in the iteration matrix (CableTangent; default exact). The
   /// residual does not depend on it.
   void set_cable_tangent(CableTangent tangent) { workspace_.cable_tangent = tangent; }
+  /// Force-only cable kernel of the residual (CableForceKernel; default invariant).
+  void set_cable_force_kernel(CableForceKernel kernel) { workspace_.cable_force_kernel = kernel; }
   /// Wall time spent in residual() and in iteration_matrix() [s], cumulative.
   [[nodiscard]] double residual_seconds() const { return residual_seconds_; }
   [[nodiscard]] double matrix_seconds() const { return matrix_seconds_; }

@@ -1,0 +1,324 @@
+// The Kirchhoff rod's force, tangent and damping matrix by a two-level chain rule
+// (RodKernel::local_chain). The strains at a Gauss point depend on the 14 element coordinates
+// only through 11 local variables
+//   y = (a = r_x, b = r_xx, t₁, α₁, ζ) ∈ R¹¹,
+// all linear in e except ζ = α₂ + ω(t₁, t₂). So with B = ∂y/∂e (the point's Hermite
+// derivatives, identities, and ∇ζ as last row) and H_ζ = ∂²ζ/∂e² (on t₁, t₂ only):
+//   ∇ₑs = Bᵀ∇_y s,   ∇ₑ²s = Bᵀ(∇_y² s)B + (∂s/∂ζ) H_ζ.
+// Jets run in the 11 local variables per point and in (t₁, t₂) once per element for ω, instead
+// of in all 14 coordinates through every operation (RodKernel::element_jets). The values use the
+// same operations as that kernel (kirchhoff_rod_strains.hpp), so energy and strains are bitwise
+// equal and the derivatives agree to round-off (test_kirchhoff_rod_element).
+#include "kirchhoff_rod_local_chain.hpp"
+
+#include <array>
+
+#include "ancf/physics/jet.hpp"
+#include "kirchhoff_rod_strains.hpp"
+
+namespace ancf::rod_detail {
+namespace {
+
+constexpr int kLocal = 11;
+constexpr int kB = 0, kA = 3, kT1 = 6, kAlpha1 = 9, kZeta = 10;  // offsets in y
+using LocalVec = Eigen::Matrix<double, kLocal, 1>;
+using LocalMat = Eigen::Matrix<double, kLocal, kLocal>;
+using LocalMap = Eigen::Matrix<double, kLocal, 14>;  // B = ∂y/∂e
+// Element coordinates of (t₁, t₂), the variables of ω's jets.
+constexpr std::array<int, 6> kTangents{3, 4, 5, 9, 10, 11};
+
+// A jet in N variables as one in M ⊇ them, its variables at [offset, offset + N).
+template <int M, int N, bool S>
+Jet<M, S> promote(const Jet<N, S>& x, int offset) {
+  Jet<M, S> y(x.v);
+  y.g.template segment<N>(offset) = x.g;
+  if constexpr (S) y.h.template block<N, N>(offset, offset) = x.h;
+  return y;
+}
+template <int M, int N, bool S>
+V3<Jet<M, S>> promote(const V3<Jet<N, S>>& v, int offset) {
+  return {promote<M>(v.x, offset), promote<M>(v.y, offset), promote<M>(v.z, offset)};
+}
+
+template <class J>
+V3<J> variables(const V3<double>& v, int first) {
+  return {J::variable(v.x, first), J::variable(v.y, first + 1), J::variable(v.z, first + 2)};
+}
+
+// Node 1's untwisted frame (t̂₁, d₂, d₃ of SR(R₁ → t̂₁)) as jets in t₁, and ζ = α₂ + ω as a
+// jet in (t₁, t₂).
+template <bool S>
+struct NodeFrame {
+  V3<Jet<3, S>> t1, n2, n3;
+  Jet<6, S> zeta;
+};
+
+// element_frame (kirchhoff_rod_strains.hpp) with the same operations, each node's quantities as
+// jets in its own tangent (3 variables) and only SR(Λ̄₁ → t̂₂) and ω in both (6).
+template <bool S>
+NodeFrame<S> staged_element_frame(const RodElementHistory& h, const Vec14& e) {
+  using std::sqrt;
+  using J3 = Jet<3, S>;
+  using J6 = Jet<6, S>;
+  const V3<J3> t1 = variables<J3>({e[3], e[4], e[5]}, 0),
+               t2 = variables<J3>({e[9], e[10], e[11]}, 0);
+  const J3 inv1 = 1.0 / sqrt(dot(t1, t1)), inv2 = 1.0 / sqrt(dot(t2, t2));
+  const V3<J3> u1 = scale(inv1, t1), u2 = scale(inv2, t2);
+  const V3<J3> r11 = constant<J3>(h.frame1.col(0)), r12 = constant<J3>(h.frame1.col(1)),
+               r13 = constant<J3>(h.frame1.col(2));
+  const J3 i1 = checked_inverse_denominator(1.0 + dot(r11, u1), "node 1 tangent");
+  const V3<J3> n12 = sr_column(r11, r12, u1, i1), n13 = sr_column(r11, r13, u1, i1);
+  const V3<J3> r21 = constant<J3>(h.frame2.col(0)), r22 = constant<J3>(h.frame2.col(1));
+  const J3 i2 = checked_inverse_denominator(1.0 + dot(r21, u2), "node 2 tangent");
+  const V3<J3> n22 = sr_column(r21, r22, u2, i2);
+  const V3<J6> u1_6 = promote<6>(u1, 0), u2_6 = promote<6>(u2, 3), n22_6 = promote<6>(n22, 3);
+  const J6 i12 = checked_inverse_denominator(1.0 + dot(u1_6, u2_6), "element end tangent");
+  const V3<J6> m2 = sr_column(u1_6, promote<6>(n12, 0), u2_6, i12),
+               m3 = sr_column(u1_6, promote<6>(n13, 0), u2_6, i12);
+  J6 omega = atan2(dot(n22_6, m3), dot(n22_6, m2));
+  omega =
+      omega + 2.0 * std::numbers::pi * std::round((h.omega - omega.v) / (2.0 * std::numbers::pi));
+  return {u1, n12, n13, J6(e[13]) + omega};
+}
+
+// x·y for x a jet in (b, a) and y one in (a, t₁), as a jet in (b, a, t₁), by the product rule
+// without first promoting both to 9 variables. The value takes dot()'s operations.
+template <bool S>
+Jet<9, S> dot_ba_at(const V3<Jet<6, S>>& x, const V3<Jet<6, S>>& y) {
+  const std::array<const Jet<6, S>*, 3> xs{&x.x, &x.y, &x.z}, ys{&y.x, &y.y, &y.z};
+  Jet<9, S> c(x.x.v * y.x.v + x.y.v * y.y.v + x.z.v * y.z.v);
+  for (int k = 0; k < 3; ++k) {
+    const Jet<6, S>&xk = *xs[k], &yk = *ys[k];
+    c.g.template head<6>() += yk.v * xk.g;
+    c.g.template tail<6>() += xk.v * yk.g;
+    if constexpr (S) {
+      c.h.template topLeftCorner<6, 6>() += yk.v * xk.h;
+      c.h.template bottomRightCorner<6, 6>() += xk.v * yk.h;
+      for (int j = 0; j < 6; ++j) {
+        c.h.template block<6, 1>(0, 3 + j) += yk.g[j] * xk.g;
+        c.h.template block<6, 1>(3, j) += xk.g[j] * yk.g;
+      }
+    }
+  }
+  return c;
+}
+
+// The strains (ε, K₁, K₂, K₃) at a point as jets in y = (b, a, t₁, α₁, ζ). The operations and
+// their order are those of point_strains (kirchhoff_rod_strains.hpp), so the values are bitwise
+// equal; each intermediate is carried as a jet in only the variables it depends on:
+//   |a|, g = a/|a|: a (3);  κ = a × b/|a|²: (b, a) (6);  1/(1 + t̂₁·g), SR columns: (a, t₁) (6);
+//   κ·d₂, κ·d₃, (t̂₁·κ)/(1 + t̂₁·g): (b, a, t₁) (9).
+// The twist ψ = (1 − ξ)α₁ + ξζ enters through cos ψ, sin ψ, differentiated here by hand:
+//   K₂ = (c k₂ + s k₃)/J₀, ∂K₂/∂ψ = K₃;  K₃ = (c k₃ − s k₂)/J₀, ∂K₃/∂ψ = −K₂.
+template <bool S>
+std::array<Jet<kLocal, S>, 4> staged_point_strains(const PointData& pd, const NodeFrame<S>& f,
+                                                   const V3<double>& ad, const V3<double>& bd,
+                                                   double alpha1, double zeta) {
+  using std::sqrt;
+  using J3 = Jet<3, S>;
+  using J6 = Jet<6, S>;
+  using J9 = Jet<9, S>;
+  using JL = Jet<kLocal, S>;
+  const double ij = pd.inv_j0, xi = pd.xi;
+  // a alone
+  const V3<J3> a = variables<J3>(ad, 0);
+  const J3 saa = dot(a, a);
+  const J3 na = sqrt(saa);
+  const V3<J3> g = scale(1.0 / na, a);
+  // (b, a)
+  const V3<J6> a_ba = promote<6>(a, 3), b_ba = variables<J6>(bd, 0);
+  const V3<J6> kappa = scale(promote<6>(1.0 / saa, 3), cross(a_ba, b_ba));
+  // (a, t₁)
+  const V3<J6> t1_at = promote<6>(f.t1, 3), g_at = promote<6>(g, 0);
+  const J6 ic = checked_inverse_denominator(1.0 + dot(t1_at, g_at), "centreline tangent");
+  const V3<J6> g2 = sr_column(t1_at, promote<6>(f.n2, 3), g_at, ic),
+               g3 = sr_column(t1_at, promote<6>(f.n3, 3), g_at, ic);
+  // (b, a, t₁)
+  const J9 k2 = dot_ba_at(kappa, g2), k3 = dot_ba_at(kappa, g3);
+  const J9 sr_twist = dot_ba_at(kappa, t1_at) * promote<9>(ic, 3);
+  // the twist, by hand
+  const double psi = (1.0 - xi) * alpha1 + xi * zeta;
+  const double c = std::cos(psi), s = std::sin(psi);
+  const double k1 = (zeta - alpha1) * (1.0 / pd.length) - sr_twist.v;
+  std::array<JL, 4> out;
+  out[0] = promote<kLocal>(na, kA);
+  out[0].v = na.v * ij - 1.0;
+  out[0].g *= ij;
+  out[1] = promote<kLocal>(sr_twist, 0);
+  out[1].v = k1 * ij;
+  out[1].g *= -ij;
+  out[1].g[kAlpha1] = -ij / pd.length;
+  out[1].g[kZeta] = ij / pd.length;
+  const double kk2 = (c * k2.v + s * k3.v) * ij, kk3 = (c * k3.v - s * k2.v) * ij;
+  out[2].v = kk2;
+  out[3].v = kk3;
+  const Eigen::Matrix<double, 9, 1> q2 = ij * (c * k3.g - s * k2.g),  // ∂²K₂/∂ψ∂(b, a, t₁)
+      q3 = -ij * (s * k3.g + c * k2.g);  // ∂²K₃/∂ψ∂(b, a, t₁)
+  out[2].g.template head<9>() = ij * (c * k2.g + s * k3.g);
+  out[3].g.template head<9>() = ij * (c * k3.g - s * k2.g);
+  out[2].g[kAlpha1] = (1.0 - xi) * kk3;
+  out[2].g[kZeta] = xi * kk3;
+  out[3].g[kAlpha1] = -(1.0 - xi) * kk2;
+  out[3].g[kZeta] = -xi * kk2;
+  if constexpr (S) {
+    out[0].h *= ij;
+    out[1].h *= -ij;
+    out[2].h.template topLeftCorner<9, 9>() = ij * (c * k2.h + s * k3.h);
+    out[3].h.template topLeftCorner<9, 9>() = ij * (c * k3.h - s * k2.h);
+    const double pa = 1.0 - xi, pz = xi;  // ∂ψ/∂α₁, ∂ψ/∂ζ
+    for (int m = 2; m < 4; ++m) {
+      const Eigen::Matrix<double, 9, 1>& q = m == 2 ? q2 : q3;
+      const double second = m == 2 ? -kk2 : -kk3;  // ∂²K/∂ψ²
+      auto& h = out[m].h;
+      h.template block<9, 1>(0, kAlpha1) = pa * q;
+      h.template block<9, 1>(0, kZeta) = pz * q;
+      h.template block<1, 9>(kAlpha1, 0) = pa * q.transpose();
+      h.template block<1, 9>(kZeta, 0) = pz * q.transpose();
+      h(kAlpha1, kAlpha1) = second * pa * pa;
+      h(kAlpha1, kZeta) = h(kZeta, kAlpha1) = second * pa * pz;
+      h(kZeta, kZeta) = second * pz * pz;
+    }
+  }
+  return out;
+}
+
+// B = ∂y/∂e is sparse: column j (centreline coordinate j = 3k + i) holds S_k′ at a_i, S_k″ at
+// b_i and, for k = 1, 1 at t₁ᵢ; column 12 holds 1 at α₁; ∂ζ/∂e_j at ζ. Calls f(row, B(row, j)).
+template <class F>
+void for_map_column(const PointData& pd, const Vec14& zeta_gradient, int j, F&& f) {
+  if (j < 12) {
+    const int k = j / 3, i = j % 3;
+    f(kA + i, pd.d1[k]);
+    f(kB + i, pd.d2[k]);
+    if (k == 1) f(kT1 + i, 1.0);
+  } else if (j == 12) {
+    f(kAlpha1, 1.0);
+  }
+  if (zeta_gradient[j] != 0.0) f(kZeta, zeta_gradient[j]);
+}
+
+// Bᵀ v
+Vec14 map_transpose_times(const PointData& pd, const Vec14& zg, const LocalVec& v) {
+  Vec14 out;
+  for (int j = 0; j < 14; ++j) {
+    double sum = 0.0;
+    for_map_column(pd, zg, j, [&](int r, double beta) { sum += beta * v[r]; });
+    out[j] = sum;
+  }
+  return out;
+}
+
+// B u
+LocalVec map_times(const PointData& pd, const Vec14& zg, const Vec14& u) {
+  LocalVec out = LocalVec::Zero();
+  for (int j = 0; j < 14; ++j)
+    for_map_column(pd, zg, j, [&](int r, double beta) { out[r] += beta * u[j]; });
+  return out;
+}
+
+// out += Bᵀ m B
+void add_congruence(const PointData& pd, const Vec14& zg, const LocalMat& m, Mat14& out) {
+  LocalMap mb;  // m B
+  for (int j = 0; j < 14; ++j) {
+    mb.col(j).setZero();
+    for_map_column(pd, zg, j, [&](int r, double beta) { mb.col(j) += beta * m.col(r); });
+  }
+  for (int i = 0; i < 14; ++i)
+    for_map_column(pd, zg, i, [&](int r, double beta) { out.row(i) += beta * mb.row(r); });
+}
+
+template <bool kSecond>
+void evaluate(const RodSection& section, const RodElementReference& ref,
+              const RodElementHistory& history, const Vec14& e, const Vec14& e_dot,
+              const RodEvalRequest& request, RodElementResult& out) {
+  const std::array<double, 4> stiff{section.axial_stiffness, section.torsional_stiffness,
+                                    section.bending_stiffness_2, section.bending_stiffness_3};
+  const std::array<double, 4> damp{section.axial_damping, section.torsional_damping,
+                                   section.bending_damping, section.bending_damping};
+  const bool damping = section.has_damping();
+  const bool stiffness = kSecond && request.stiffness;
+
+  // Element frame: node 1's triad in t₁, ζ = α₂ + ω in (t₁, t₂) (α₂ enters linearly).
+  const NodeFrame<kSecond> frame = staged_element_frame<kSecond>(history, e);
+  const Jet<6, kSecond>& zeta = frame.zeta;
+  Vec14 zeta_gradient = Vec14::Zero();
+  for (int i = 0; i < 6; ++i) zeta_gradient[kTangents[i]] = zeta.g[i];
+  zeta_gradient[13] = 1.0;
+
+  std::array<double, 14> x;
+  for (int i = 0; i < 14; ++i) x[i] = e[i];
+  double zeta_stress = 0.0;            // Σ w σ_k ∂s_k/∂ζ, multiplies H_ζ
+  Vec14 zeta_damping = Vec14::Zero();  // Σ w c_k (∂s_k/∂ζ) ∇ₑs_k, times (H_ζ ė)ᵀ
+  for (int p = 0; p < kRodGaussPoints; ++p) {
+    const PointData pd = point_data(ref, p);
+    V3<double> a, b;
+    centreline_derivatives(pd, x, a, b);
+    const auto s = staged_point_strains(pd, frame, a, b, e[12], zeta.v);
+    const LocalVec y_dot = damping ? map_times(pd, zeta_gradient, e_dot) : LocalVec::Zero();
+    const double w = ref.weight[p];
+    if (p == kRodGaussPoints / 2) out.strain_mid = Vec3(s[1].v, s[2].v, s[3].v);
+    LocalVec f = LocalVec::Zero();
+    LocalMat k_local = LocalMat::Zero(), d_local = LocalMat::Zero();
+    LocalVec z_local = LocalVec::Zero();
+    for (int k = 0; k < 4; ++k) {
+      const double d = s[k].v - (k == 0 ? 0.0 : ref.k0[p][k - 1]);
+      out.energy += 0.5 * w * stiff[k] * d * d;
+      const bool damped = damping && damp[k] > 0.0;
+      const double rate = damped ? s[k].g.dot(y_dot) : 0.0;
+      const double sigma = stiff[k] * d + damp[k] * rate;  // stress resultant of strain k
+      f.noalias() += (w * sigma) * s[k].g;
+      if constexpr (kSecond) {
+        if (stiffness) {
+          k_local.noalias() += (w * stiff[k]) * s[k].g * s[k].g.transpose();
+          k_local.noalias() += (w * sigma) * s[k].h;
+          zeta_stress += w * sigma * s[k].g[kZeta];
+          if (damped) {
+            const LocalVec hy = s[k].h * y_dot;  // ∂(c ṡ)/∂y = c (H ẏ)ᵀ
+            k_local.noalias() += (w * damp[k]) * s[k].g * hy.transpose();
+            z_local.noalias() += (w * damp[k] * s[k].g[kZeta]) * s[k].g;
+          }
+        }
+      }
+      if (request.damping_matrix && damped)
+        d_local.noalias() += (w * damp[k]) * s[k].g * s[k].g.transpose();
+    }
+    out.force += map_transpose_times(pd, zeta_gradient, f);
+    if (stiffness) {
+      add_congruence(pd, zeta_gradient, k_local, out.stiffness);
+      if (damping) zeta_damping += map_transpose_times(pd, zeta_gradient, z_local);
+    }
+    if (request.damping_matrix && damping) add_congruence(pd, zeta_gradient, d_local, out.damping);
+  }
+  if constexpr (kSecond) {
+    if (stiffness) {
+      Eigen::Matrix<double, 6, 1> hz_edot = Eigen::Matrix<double, 6, 1>::Zero();
+      if (damping) {
+        Eigen::Matrix<double, 6, 1> et;
+        for (int i = 0; i < 6; ++i) et[i] = e_dot[kTangents[i]];
+        hz_edot = zeta.h * et;
+      }
+      for (int j = 0; j < 6; ++j) {
+        const int cj = kTangents[j];
+        for (int i = 0; i < 6; ++i) out.stiffness(kTangents[i], cj) += zeta_stress * zeta.h(i, j);
+        if (damping) out.stiffness.col(cj).noalias() += hz_edot[j] * zeta_damping;
+      }
+    }
+  }
+}
+
+}  // namespace
+
+void evaluate_with_local_chain(const RodSection& section, const RodElementReference& ref,
+                               const RodElementHistory& history, const Vec14& e, const Vec14& e_dot,
+                               const RodEvalRequest& request, RodElementResult& out) {
+  out.energy = 0.0;
+  out.force.setZero();
+  if (request.stiffness) out.stiffness.setZero();
+  if (request.damping_matrix) out.damping.setZero();
+  if (request.stiffness)
+    evaluate<true>(section, ref, history, e, e_dot, request, out);
+  else
+    evaluate<false>(section, ref, history, e, e_dot, request, out);
+}
+
+}  // namespace ancf::rod_detail

@@ -1,0 +1,13 @@
+// Private to the physics layer: the Kirchhoff rod kernel RodKernel::local_chain
+// (kirchhoff_rod_local_chain.cpp), called by evaluate_rod_element.
+#pragma once
+
+#include "ancf/physics/kirchhoff_rod_element.hpp"
+
+namespace ancf::rod_detail {
+
+void evaluate_with_local_chain(const RodSection& section, const RodElementReference& ref,
+                               const RodElementHistory& history, const Vec14& e, const Vec14& e_dot,
+                               const RodEvalRequest& request, RodElementResult& out);
+
+}  // namespace ancf::rod_detail
