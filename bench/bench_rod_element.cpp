@@ -3,28 +3,16 @@
 // only meaningful within one run.
 #include <benchmark/benchmark.h>
 
-#include "ancf/physics/cable_element.hpp"
-#include "ancf/physics/kirchhoff_rod_element.hpp"
-#include "ancf/system/cable_geometry.hpp"
+#include "helix_element_case.hpp"
 
 namespace {
 using namespace ancf;
-
-struct Setup {
-  CableGeometry g = helix_cable(Vec3::Zero(), Vec3::UnitZ(), Vec3::UnitX(), 0.1, 0.3, 2.0, 0.15, 4);
-  Vec12 e0 = g.element_coordinates(1);
-  Vec12 e = e0 + 0.01 * Vec12::LinSpaced(-1.0, 1.0);
-};
+using bench::HelixElementCase;
 
 void BM_CableElement(benchmark::State& state) {
-  const Setup s;
-  CableSection section;
-  section.strain = StrainMeasure::elastic_line;
-  section.axial_stiffness = 3e5;
-  section.bending_stiffness = 0.5;
-  section.mass_per_length = 0.02;
-  const auto ref = CableElementReference::from_reference(
-      s.e0, s.g.element_lengths[1], section.strain, {.axial = 4, .bending = 4});
+  const HelixElementCase s;
+  const CableSection section = HelixElementCase::cable_section();
+  const auto ref = s.cable_reference();
   CableElementResult out;
   const bool tangent = state.range(0) != 0;
   for (auto _ : state) {
@@ -36,18 +24,11 @@ void BM_CableElement(benchmark::State& state) {
 BENCHMARK(BM_CableElement)->ArgName("tangent")->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 void BM_RodElement(benchmark::State& state) {
-  const Setup s;
-  RodSection section;
-  section.axial_stiffness = 3e5;
-  section.torsional_stiffness = 0.4;
-  section.bending_stiffness_2 = section.bending_stiffness_3 = 0.5;
-  section.mass_per_length = 0.02;
-  section.polar_inertia = 1e-7;
-  const auto frames = rod_frames_toward_axis(s.g, Vec3::Zero(), Vec3::UnitZ());
-  RodElementHistory h{frames[1], frames[2], 0.0};
-  const auto ref = RodElementReference::from_reference(s.e0, s.g.element_lengths[1], h);
-  Vec14 e;
-  e << s.e, 0.05, -0.03;
+  const HelixElementCase s;
+  const RodSection section = HelixElementCase::rod_section();
+  RodElementHistory h = s.rod_history();
+  const auto ref = s.rod_reference(h);
+  const Vec14 e = s.rod_coordinates();
   RodElementResult out;
   const bool tangent = state.range(0) != 0;
   const RodKernel kernel = state.range(1) != 0 ? RodKernel::element_jets : RodKernel::local_chain;

@@ -8,9 +8,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "ancf/physics/cable_element.hpp"
-#include "ancf/physics/kirchhoff_rod_element.hpp"
-#include "ancf/system/cable_geometry.hpp"
+#include "helix_element_case.hpp"
 
 int main(int argc, char** argv) {
   using namespace ancf;
@@ -21,20 +19,12 @@ int main(int argc, char** argv) {
   }
   const bool tangent = std::atoi(argv[2]) != 0;
   const int calls = std::atoi(argv[3]);
-  // The element and sections of bench_rod_element.cpp.
-  const CableGeometry g =
-      helix_cable(Vec3::Zero(), Vec3::UnitZ(), Vec3::UnitX(), 0.1, 0.3, 2.0, 0.15, 4);
-  const Vec12 e0 = g.element_coordinates(1);
-  Vec12 e12 = e0 + 0.01 * Vec12::LinSpaced(-1.0, 1.0);
+  const bench::HelixElementCase c;  // the element and sections of bench_rod_element.cpp
+  Vec12 e12 = c.e;
   double sum = 0.0;  // keeps the results alive
   if (kernel == "cable") {
-    CableSection section;
-    section.strain = StrainMeasure::elastic_line;
-    section.axial_stiffness = 3e5;
-    section.bending_stiffness = 0.5;
-    section.mass_per_length = 0.02;
-    const auto ref = CableElementReference::from_reference(e0, g.element_lengths[1], section.strain,
-                                                           {.axial = 4, .bending = 4});
+    const CableSection section = bench::HelixElementCase::cable_section();
+    const auto ref = c.cable_reference();
     CableElementResult out;
     for (int i = 0; i < calls; ++i) {
       e12[0] += 1e-9;
@@ -42,17 +32,10 @@ int main(int argc, char** argv) {
       sum += out.force[0] + (tangent ? out.stiffness(3, 4) : 0.0);
     }
   } else {
-    RodSection section;
-    section.axial_stiffness = 3e5;
-    section.torsional_stiffness = 0.4;
-    section.bending_stiffness_2 = section.bending_stiffness_3 = 0.5;
-    section.mass_per_length = 0.02;
-    section.polar_inertia = 1e-7;
-    const auto frames = rod_frames_toward_axis(g, Vec3::Zero(), Vec3::UnitZ());
-    RodElementHistory h{frames[1], frames[2], 0.0};
-    const auto ref = RodElementReference::from_reference(e0, g.element_lengths[1], h);
-    Vec14 e;
-    e << e12, 0.05, -0.03;
+    const RodSection section = bench::HelixElementCase::rod_section();
+    RodElementHistory h = c.rod_history();
+    const auto ref = c.rod_reference(h);
+    Vec14 e = c.rod_coordinates();
     const RodKernel k = kernel == "local_chain" ? RodKernel::local_chain : RodKernel::element_jets;
     RodElementResult out;
     for (int i = 0; i < calls; ++i) {

@@ -22,6 +22,7 @@
 #include "ancf/system/static_model_problem.hpp"
 #include "dense_matrix.hpp"
 #include "fd_check.hpp"
+#include "iteration_matrix_check.hpp"
 
 namespace ancf {
 namespace {
@@ -316,22 +317,7 @@ TEST(KirchhoffRodStatics, AssembledMatrixMatchesResidualDifferences) {
   for (Index i = 0; i < s.lambda.size(); ++i) s.lambda[i] = nd(rng);
   const IterationWeights w{.w_q = 1.0, .w_v = 0.7, .w_a = 0.3, .load_factor = 0.8};
   Workspace ws(m);
-  VecX values(m.pattern().nonzeros());
-  assemble_iteration_matrix(m, s, w, ws, as_span(values));
-  const MatX jac = testing::dense(m.pattern(), values);
-  // R(q + x, v + w_v/w_q x, a + w_a/w_q x) differentiated in x gives w_q K + w_v D + w_a M.
-  const Index n = m.coordinate_count(), nn = m.system_size();
-  const auto residual = [&](const fdcheck::Vec& x) {
-    SystemState t = s;
-    t.q += x.head(n);
-    t.v += w.w_v * x.head(n);
-    t.a += w.w_a * x.head(n);
-    t.lambda += x.tail(nn - n);
-    VecX r(nn);
-    assemble_residual(m, t, w.load_factor, ws, as_span(r));
-    return fdcheck::Vec(r);
-  };
-  const auto res = fdcheck::check_jacobian(residual, fdcheck::Vec::Zero(nn), jac);
+  const auto res = testing::check_iteration_matrix(m, s, w, ws);
   EXPECT_TRUE(res.ok()) << "ratio " << res.max_ratio << " at (" << m.describe_row(res.row) << ", "
                         << m.describe_row(res.col) << "): " << res.analytic << " vs " << res.fd;
 }

@@ -25,32 +25,32 @@ Vec12 cable_element(const CableData& cable, Index element, const SystemState& st
   return state.q.segment<12>(cable.first_coordinate + 6 * element);
 }
 
-CableSample sample_at(const CableData& cable, Index element, int k, int samples,
-                      const SystemState& state) {
-  CableSample s;
-  const Index base = cable.first_coordinate + 6 * element;
-  s.e = state.q.segment<12>(base);
-  s.e_dot = state.v.segment<12>(base);
-  s.length = cable.elements[element].length;
-  s.xi = (k + 0.5) / samples;
-  s.weight = s.length / samples;
-  s.radius = cable.section.radius;
-  return s;
-}
-
 // Calls search(local) for local = 0 … count − 1, the one with the smallest bound first, skipping
-// those whose bound(local) ≥ best() at the time they come up (all are searched when !prune).
+// those whose bound(local) ≥ best() at the time they come up (all are searched when !prune). Each
+// bound is evaluated once (outputs run between steps: the vector may allocate).
 template <class Bound, class Best, class Search>
 void branch_and_bound(Index count, bool prune, Bound&& bound, Best&& best, Search&& search) {
+  if (count <= 0) return;
+  std::vector<double> bounds;
   Index first = 0;
   if (prune) {
-    double lowest = kInf;
-    for (Index k = 0; k < count; ++k)
-      if (const double b = bound(k); b < lowest) lowest = b, first = k;
+    bounds.resize(static_cast<std::size_t>(count));
+    for (Index k = 0; k < count; ++k) {
+      bounds[k] = bound(k);
+      if (bounds[k] < bounds[first]) first = k;
+    }
   }
-  if (count > 0) search(first);
+  search(first);
   for (Index k = 0; k < count; ++k)
-    if (k != first && (!prune || bound(k) < best())) search(k);
+    if (k != first && (!prune || bounds[k] < best())) search(k);
+}
+
+// Lower bound on the surface gap between a placed shape and a cable element, from its hull.
+double shape_element_bound(const ShapeDistanceBound& shape_bound, const CableData& cable,
+                           Index element, const SystemState& state) {
+  return shape_bound(
+             element_hull(cable_element(cable, element, state), cable.elements[element].length)) -
+         cable.section.radius;
 }
 
 double shape_sample_min_gap(const Model& model, const SystemState& state, Workspace& ws, Index pair,
@@ -63,17 +63,13 @@ double shape_sample_min_gap(const Model& model, const SystemState& state, Worksp
   double smallest = kInf;
   branch_and_bound(
       c.count, prune,
-      [&](Index local) {
-        return shape_bound(element_hull(cable_element(cable, c.first + local, state),
-                                        cable.elements[c.first + local].length)) -
-               cable.section.radius;
-      },
+      [&](Index local) { return shape_element_bound(shape_bound, cable, c.first + local, state); },
       [&] { return smallest; },
       [&](Index local) {
         for (int k = 0; k < c.samples; ++k) {
           ++ws.narrow_phase_samples;
           evaluate_cable_shape_contact(c.law, shape.shape, pose,
-                                       sample_at(cable, c.first + local, k, c.samples, state),
+                                       sample_of(cable, c.first + local, k, c.samples, state),
                                        false, ws.contact);
           smallest = std::min(smallest, ws.contact.gap);
         }
@@ -112,10 +108,8 @@ double cable_sample_min_gap(const Model& model, const SystemState& state, Worksp
       [&](Index li) {
         const Index i = c.first_a + li;
         for (int k = 0; k < c.samples; ++k) {
-          const CableSample s = sample_at(a, i, k, c.samples, state);
-          const Vec4 shape = hermite::values(s.xi, s.length);
-          Vec3 x = Vec3::Zero();  // as in visit_cable_cable, so the projections are the same
-          for (int n = 0; n < 4; ++n) x += shape[n] * s.e.segment<3>(3 * n);
+          const CableSample s = sample_of(a, i, k, c.samples, state);
+          const Vec3 x = centreline_point(hermite::values(s.xi, s.length), s.e);
           // The closest element of b (first of equals, as the exhaustive loop finds it); an element
           // whose box is no nearer than the best so far, or than smallest + reach, cannot change
           // the minimum.
@@ -170,20 +164,14 @@ double centreline_min_gap(const Model& model, const SystemState& state, Workspac
   double smallest = kInf;
   branch_and_bound(
       c.count, prune,
-      [&](Index local) {
-        return shape_bound(element_hull(cable_element(cable, c.first + local, state),
-                                        cable.elements[c.first + local].length)) -
-               cable.section.radius;
-      },
+      [&](Index local) { return shape_element_bound(shape_bound, cable, c.first + local, state); },
       [&] { return smallest; },
       [&](Index local) {
         const Index j = c.first + local;
         const Vec12 e = state.q.segment<12>(cable.first_coordinate + 6 * j);
         const double l = cable.elements[j].length;
         auto gap = [&](double xi) {
-          const Vec4 s = hermite::values(xi, l);
-          Vec3 x = Vec3::Zero();
-          for (int n = 0; n < 4; ++n) x += s[n] * e.segment<3>(3 * n);
+          const Vec3 x = centreline_point(hermite::values(xi, l), e);
           return signed_distance(shape.shape, pose.rotation.transpose() * (x - pose.origin))
                      .distance -
                  cable.section.radius;

@@ -100,6 +100,19 @@ const std::vector<Aabb>& element_boxes_of(const Model& model, const SystemState&
   return boxes;
 }
 
+CableSample sample_of(const CableData& cable, Index element, int k, int samples,
+                      const SystemState& state) {
+  CableSample s;
+  const Index base = cable.first_coordinate + 6 * element;
+  s.e = state.q.segment<12>(base);
+  s.e_dot = state.v.segment<12>(base);
+  s.length = cable.elements[element].length;
+  s.xi = (k + 0.5) / samples;
+  s.weight = s.length / samples;
+  s.radius = cable.section.radius;
+  return s;
+}
+
 namespace {
 
 // The hull of element j of cable c from the boxes of the last refresh_cable_boxes (which must have
@@ -119,19 +132,6 @@ ElementHull stored_hull(const Model& model, const SystemState& state, Workspace&
   h.deviation = deviation;
   h.box = ws.element_boxes[c][j];
   return h;
-}
-
-CableSample sample_of(const CableData& cable, Index element, int k, int samples,
-                      const SystemState& state) {
-  CableSample s;
-  const Index base = cable.first_coordinate + 6 * element;
-  s.e = state.q.segment<12>(base);
-  s.e_dot = state.v.segment<12>(base);
-  s.length = cable.elements[element].length;
-  s.xi = (k + 0.5) / samples;
-  s.weight = s.length / samples;
-  s.radius = cable.section.radius;
-  return s;
 }
 
 void visit_cable_shape(const Model& model, const SystemState& state, Workspace& ws,
@@ -228,9 +228,7 @@ void visit_cable_cable(const Model& model, const SystemState& state, Workspace& 
     for (int k = 0; k < c.samples; ++k) {
       const CableSample s = sample_of(a, i, k, c.samples, state);
       ++ws.narrow_phase_samples;
-      const Vec4 shape = hermite::values(s.xi, s.length);
-      Vec3 x = Vec3::Zero();
-      for (int n = 0; n < 4; ++n) x += shape[n] * s.e.segment<3>(3 * n);
+      const Vec3 x = centreline_point(hermite::values(s.xi, s.length), s.e);
       // The closest point on cable b is the best projection over the candidates: any element
       // outside them is farther than `reach` from this sample.
       ElementProjection best{0.0, std::numeric_limits<double>::infinity()};

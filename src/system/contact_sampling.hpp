@@ -59,6 +59,18 @@ void refresh_cable_boxes(const Model& model, const SystemState& state, Workspace
 const std::vector<Aabb>& element_boxes_of(const Model& model, const SystemState& state,
                                           Workspace& ws, Index c);
 
+/// Contact sample k of `samples` (midpoint rule) on element `element` of `cable` at `state`.
+CableSample sample_of(const CableData& cable, Index element, int k, int samples,
+                      const SystemState& state);
+
+/// Centreline point Σ_n shape_n r_n of element coordinates `e` (shape = hermite::values); one
+/// summation order for the kernels and the outputs, so that their projections agree bit for bit.
+inline Vec3 centreline_point(const Vec4& shape, const Vec12& e) {
+  Vec3 x = Vec3::Zero();
+  for (int n = 0; n < 4; ++n) x += shape[n] * e.segment<3>(3 * n);
+  return x;
+}
+
 inline Aabb inflated(Aabb box, double margin) {
   box.inflate(margin);
   return box;
