@@ -17,6 +17,7 @@
 //                            [--pointwise-force] (force-only cable kernel of 3e3daf4)
 //                            [--pointwise-stiffness] (cable stiffness kernel of 3e3daf4)
 //                            [--klu-solve]       (klu_l_solve instead of the extracted factors)
+//                            [--klu-refactor]    (klu_l_refactor instead of the LU on the runs)
 #include <fmt/format.h>
 #include <algorithm>
 #include <array>
@@ -86,6 +87,7 @@ void profile_kernels(const ancf::Model& model, const GeneralizedAlphaOptions& op
   ancf::VecX r(problem.system_size()), values(problem.iteration_pattern().nonzeros());
   ancf::KluSolver klu(problem.iteration_pattern());
   klu.set_solve(options.klu_solve);
+  klu.set_refactor(options.klu_refactor);
   const auto weights = stepper.iteration_weights(options.step_size, true);
   problem.iteration_matrix(0.0, q, v, a, l, weights, ancf::as_span(values));
   klu.factor(ancf::as_span(values));
@@ -124,7 +126,8 @@ int main(int argc, char** argv) {
   double step = 1e-3, rho = 0.8, rtol = 1e-6, reuse_rate = GeneralizedAlphaOptions{}.max_reuse_rate;
   bool extrapolate = false;
   int runs = 9;
-  bool reference = true, profile = false, pivot_growth = false, klu_solve = false;
+  bool reference = true, profile = false, pivot_growth = false, klu_solve = false,
+       klu_refactor = false;
   Kernels kernels;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -157,6 +160,8 @@ int main(int argc, char** argv) {
       pivot_growth = true;
     else if (arg == "--klu-solve")
       klu_solve = true;
+    else if (arg == "--klu-refactor")
+      klu_refactor = true;
     else if (arg == "--pointwise-force")
       kernels.force = ancf::CableKernel::pointwise;
     else if (arg == "--pointwise-stiffness")
@@ -165,7 +170,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr,
                    "usage: %s [--elements N] [--step H] [--rho R] [--runs K] [--rtol TOL] "
                    "[--reuse-rate R] [--extrapolate] [--no-reference] [--profile] [--pivot-growth] "
-                   "[--pointwise-force] [--pointwise-stiffness] [--klu-solve]\n",
+                   "[--pointwise-force] [--pointwise-stiffness] [--klu-solve] [--klu-refactor]\n",
                    argv[0]);
       return 2;
     }
@@ -185,6 +190,7 @@ int main(int argc, char** argv) {
   fast.atol_multiplier = rtol;
   if (pivot_growth) fast.refactor_check = ancf::RefactorCheck::pivot_growth;
   if (klu_solve) fast.klu_solve = ancf::KluSolve::klu;
+  if (klu_refactor) fast.klu_refactor = ancf::KluRefactor::klu;
 
   std::vector<double> seconds;
   Run last;

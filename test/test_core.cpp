@@ -132,6 +132,7 @@ TEST(KluSolver, ExtractedSolveEqualsKlusOwnSolve) {
   p.freeze();
   KluSolver klu(p), extracted(p);  // round 1 refactorizes: the values move through the old map
   klu.set_solve(KluSolve::klu);
+  extracted.set_refactor(KluRefactor::klu);  // KLU's own refactorization, then extracted
   for (const int round : {0, 1}) {
     VecX values(p.nonzeros());
     MatX dense = MatX::Zero(n, n);
@@ -155,6 +156,64 @@ TEST(KluSolver, ExtractedSolveEqualsKlusOwnSolve) {
   }
   EXPECT_EQ(extracted.refactorizations(), 1);
   EXPECT_EQ(klu.refactorizations(), 1);
+}
+
+TEST(KluSolver, RunsRefactorizationAgreesWithKlus) {
+  // The matrix class of ExtractedSolveEqualsKlusOwnSolve (BTF blocks, entries above them, rows
+  // scaled over 8 decades, zero diagonals pivoted off the diagonal), refactorized over five
+  // rounds of new values by KLU (klu_l_refactor, which rescales the rows) and by the left-looking
+  // LU on the runs (the first factorization's scaling). Both are backward stable with the same
+  // pivots, so the solutions agree to a few ε·cond; the dense LU checks both.
+  const Index n = 41;
+  SparsityPattern p(n);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const Index starts[] = {0, 10, 25, 40, 41};
+  for (int blk = 0; blk < 4; ++blk)
+    for (Index i = starts[blk]; i < starts[blk + 1]; ++i) {
+      p.add(i, i);
+      const Index size = starts[blk + 1] - starts[blk];
+      if (size > 1) {
+        p.add(starts[blk] + (i - starts[blk] + 1) % size, i);
+        p.add(starts[blk] + (i * 7 + 3) % size, i);
+      }
+      if (blk > 0) p.add((i * 5) % starts[blk], i);
+    }
+  p.freeze();
+  KluSolver klu(p), runs(p);
+  klu.set_refactor(KluRefactor::klu);
+  klu.set_refactor_check(RefactorCheck::pivot_growth);
+  runs.set_refactor_check(RefactorCheck::pivot_growth);
+  for (int round = 0; round < 5; ++round) {
+    VecX values(p.nonzeros());
+    MatX dense = MatX::Zero(n, n);
+    for (Index c = 0; c < n; ++c)
+      for (Index k = p.column_start()[c]; k < p.column_start()[c + 1]; ++k) {
+        const Index r = p.row_index()[k];
+        const bool saddle = r >= 30 && r < 40 && r == c;
+        values[k] = (saddle ? 0.0 : r == c ? 4.0 + round : u(rng)) * std::pow(10.0, r % 9 - 4);
+        dense(r, c) = values[k];
+      }
+    klu.factor(as_span(values));
+    runs.factor(as_span(values));
+    const Eigen::PartialPivLU<MatX> lu(dense);
+    const double cond = lu.inverse().cwiseAbs().rowwise().sum().maxCoeff() *
+                        dense.cwiseAbs().rowwise().sum().maxCoeff();
+    for (int rhs = 0; rhs < 2; ++rhs) {
+      VecX b = VecX::NullaryExpr(n, [&] { return u(rng); }), x = b;
+      const VecX expected = lu.solve(b);
+      klu.solve(as_span(b));
+      runs.solve(as_span(x));
+      EXPECT_LT((x - b).lpNorm<Eigen::Infinity>(),
+                100 * kEps * cond * b.lpNorm<Eigen::Infinity>()) << "round " << round;
+      EXPECT_LT((x - expected).lpNorm<Eigen::Infinity>(),
+                100 * kEps * cond * expected.lpNorm<Eigen::Infinity>()) << "round " << round;
+    }
+    EXPECT_GT(runs.rcond(), 0.0);
+  }
+  EXPECT_EQ(runs.full_factorizations(), 1);
+  EXPECT_EQ(runs.refactorizations(), 4);
+  EXPECT_EQ(klu.refactorizations(), 4);
 }
 
 TEST(KluSolver, ReportsASingularMatrix) {

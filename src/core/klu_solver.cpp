@@ -78,8 +78,23 @@ void KluSolver::factor(std::span<const double> values) {
   auto* ai = mutable_ptr(pattern_.row_index());
   auto* ax = const_cast<double*>(values.data());
   Impl& k = *impl_;
+  const bool factors_loaded = extracted_valid_;  // k.factors hold the last factorization
   extracted_valid_ = false;
-  if (pivots_valid_ && k.numeric) {
+  runs_rcond_ = -1.0;
+  if (pivots_valid_ && k.numeric && refactor_method_ == KluRefactor::runs &&
+      solve_method_ == KluSolve::extracted && factors_loaded) {
+    const auto quality = k.factors.refactor(pattern_.column_start().data(),
+                                            pattern_.row_index().data(), values);
+    // The same guards as below, computed in the same pass.
+    const bool good = check_ == RefactorCheck::pivot_growth ? quality.growth > 1e-10
+                                                           : quality.diagonal > 1e-13;
+    if (good) {
+      ++refactorizations_;
+      extracted_valid_ = true;
+      runs_rcond_ = quality.diagonal;
+      return;
+    }
+  } else if (pivots_valid_ && k.numeric) {
     const bool ok = klu_l_refactor(ap, ai, ax, k.symbolic, k.numeric, &k.common) == 1;
     // Refactor keeps the old pivot order, which can be poor once values have changed a lot;
     // fall back to a fresh factorization then (RefactorCheck says how that is detected).
@@ -139,6 +154,7 @@ void KluSolver::solve(std::span<double> rhs) {
 double KluSolver::rcond() {
   Impl& k = *impl_;
   if (!k.numeric) return 0.0;
+  if (runs_rcond_ >= 0.0) return runs_rcond_;  // KLU's numeric object holds older values
   klu_l_rcond(k.symbolic, k.numeric, &k.common);
   return k.common.rcond;
 }

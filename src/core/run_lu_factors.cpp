@@ -1,5 +1,7 @@
 #include "run_lu_factors.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 
 namespace ancf::detail {
@@ -103,6 +105,7 @@ bool RunLuFactors::load(klu_l_numeric* numeric, klu_l_symbolic* symbolic, klu_l_
     u_.build(n_, up_, ui_);
     f_.build(n_, fp_, fi_);
   }
+  scatter_.valid = false;  // the pivot order or the scaling may have changed
   l_.fill(lx_, unit_diagonal_);
   u_.fill(ux_, diagonal_);
   f_.fill(fx_, unit_diagonal_);  // F has no diagonal entries
@@ -129,6 +132,107 @@ void RunLuFactors::solve(std::span<double> b) {
       if (c[j] != 0.0) column(f_, j, c[j]);
   }
   for (Index k = 0; k < n_; ++k) b[perm_col_[k]] = c[k];
+}
+
+bool RunLuFactors::map_matrix(const Index* ap, const Index* ai) {
+  Scatter& m = scatter_;
+  const auto n = static_cast<std::size_t>(n_);
+  const auto nnz = static_cast<std::size_t>(ap[n_]);
+  fit(m.row_of, n);
+  for (Index k = 0; k < n_; ++k) m.row_of[perm_row_[k]] = k;
+  fit(m.inside_start, n + 1);
+  for (auto* v : {&m.inside_source, &m.inside_row, &m.outside_source, &m.outside_value}) fit(*v, nnz);
+  for (auto* v : {&m.inside_factor, &m.outside_factor}) fit(*v, nnz);
+  Index inside = 0, outside = 0;
+  for (Index blk = 0; blk < blocks_; ++blk) {
+    const Index k1 = block_start_[blk];
+    for (Index j = k1; j < block_start_[blk + 1]; ++j) {
+      m.inside_start[j] = inside;
+      const Index c = perm_col_[j];
+      for (Index a = ap[c]; a < ap[c + 1]; ++a) {
+        const Index k = m.row_of[ai[a]];
+        const double factor = 1.0 / scale_[k];  // scale_ is in the permuted order
+        if (k >= k1) {  // in the diagonal block (the form is block upper triangular)
+          m.inside_source[inside] = a;
+          m.inside_row[inside] = k;
+          m.inside_factor[inside++] = factor;
+          continue;
+        }
+        // Above the blocks: F's entry (k, j), found in its runs.
+        Index index = -1;
+        for (Index q = f_.col_runs[j]; q < f_.col_runs[j + 1]; ++q)
+          if (k >= f_.first[q] && k < f_.first[q] + f_.length[q])
+            index = f_.offset[q] + k - f_.first[q];
+        if (index < 0) return false;  // not KLU's structure: refactor through KLU instead
+        m.outside_source[outside] = a;
+        m.outside_value[outside] = index;
+        m.outside_factor[outside++] = factor;
+      }
+    }
+  }
+  m.inside_start[n_] = inside;
+  m.outside_entries = outside;
+  m.valid = true;
+  return true;
+}
+
+RunLuFactors::PivotQuality RunLuFactors::refactor(const Index* ap, const Index* ai,
+                                                  std::span<const double> ax) {
+  if (!scatter_.valid && !map_matrix(ap, ai)) return {0.0, 0.0};
+  const Scatter& m = scatter_;
+  double* x = work_.data();
+  const double* a = ax.data();
+  PivotQuality quality{1.0, 1.0};
+  double smallest_pivot = INFINITY, largest_pivot = 0.0;
+  auto zero_column = [&](const Runs& r, Index j) {
+    for (Index q = r.col_runs[j]; q < r.col_runs[j + 1]; ++q)
+      std::fill_n(x + r.first[q], r.length[q], 0.0);
+  };
+  for (Index j = 0; j < n_; ++j) {
+    // Column j of Ã (block part) into x, which is zero on the column's pattern first.
+    zero_column(u_, j);
+    zero_column(l_, j);
+    x[j] = 0.0;
+    double largest_a = 0.0;
+    for (Index e = m.inside_start[j]; e < m.inside_start[j + 1]; ++e) {
+      const double v = a[m.inside_source[e]] * m.inside_factor[e];
+      x[m.inside_row[e]] = v;
+      largest_a = std::max(largest_a, std::abs(v));
+    }
+    // U(:, j) by forward substitution with the columns of L, rows ascending (a topological order:
+    // column k of L only touches rows > k, so x_k is final when it is reached).
+    double largest_u = 0.0;
+    for (Index q = u_.col_runs[j]; q < u_.col_runs[j + 1]; ++q) {
+      double* u = u_.value.data() + u_.offset[q];
+      for (Index t = 0; t < u_.length[q]; ++t) {
+        const Index k = u_.first[q] + t;
+        const double ukj = x[k];
+        u[t] = ukj;
+        largest_u = std::max(largest_u, std::abs(ukj));
+        if (ukj == 0.0) continue;
+        for (Index r = l_.col_runs[k]; r < l_.col_runs[k + 1]; ++r)
+          subtract_scaled(x + l_.first[r], l_.value.data() + l_.offset[r], l_.length[r], ukj);
+      }
+    }
+    const double pivot = x[j];
+    if (!(std::abs(pivot) > 0.0) || !std::isfinite(pivot)) return {0.0, 0.0};
+    diagonal_[j] = pivot;
+    largest_u = std::max(largest_u, std::abs(pivot));
+    smallest_pivot = std::min(smallest_pivot, std::abs(pivot));
+    largest_pivot = std::max(largest_pivot, std::abs(pivot));
+    if (largest_a > 0.0) quality.growth = std::min(quality.growth, largest_a / largest_u);
+    // L(:, j) = x / u_jj on its pattern.
+    const double inverse = 1.0 / pivot;
+    for (Index q = l_.col_runs[j]; q < l_.col_runs[j + 1]; ++q) {
+      double* l = l_.value.data() + l_.offset[q];
+      const double* xs = x + l_.first[q];
+      for (Index t = 0; t < l_.length[q]; ++t) l[t] = xs[t] * inverse;
+    }
+  }
+  for (Index e = 0; e < m.outside_entries; ++e)
+    f_.value[m.outside_value[e]] = a[m.outside_source[e]] * m.outside_factor[e];
+  quality.diagonal = smallest_pivot / largest_pivot;
+  return quality;
 }
 
 }  // namespace ancf::detail

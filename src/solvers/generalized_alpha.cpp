@@ -63,6 +63,8 @@ GeneralizedAlphaStepper::GeneralizedAlphaStepper(SecondOrderProblem& problem,
   projector_.set_refactor_check(options_.refactor_check);
   klu_.set_solve(options_.klu_solve);
   projector_.set_solve(options_.klu_solve);
+  klu_.set_refactor(options_.klu_refactor);
+  projector_.set_refactor(options_.klu_refactor);
   if (!(options_.step_size > 0.0))
     throw std::invalid_argument("generalized-α: the step size must be positive");
   if (options_.formulation == GeneralizedAlphaFormulation::index3 && options_.rho_infinity == 1.0)

@@ -33,6 +33,14 @@ enum class KluSolve {
               ///< (src/core/run_lu_factors.hpp): the same substitutions, vectorized updates
 };
 
+/// How a refactorization (same pivot order) is computed.
+enum class KluRefactor {
+  klu,   ///< klu_l_refactor, then the factors extracted for KluSolve::extracted (… issue 15c/20c)
+  runs,  ///< left-looking LU on the extracted factors' column runs with the last full
+         ///< factorization's pivots and row scaling (src/core/run_lu_factors.hpp); needs
+         ///< KluSolve::extracted, else klu is used
+};
+
 class KluSolver {
  public:
   explicit KluSolver(const SparsityPattern& pattern);
@@ -52,10 +60,12 @@ class KluSolver {
   void set_refactor_check(RefactorCheck check) { check_ = check; }
   /// How solve() works (default extracted); takes effect at the next factor().
   void set_solve(KluSolve method) { solve_method_ = method; }
+  /// How a refactorization is computed (default runs); takes effect at the next factor().
+  void set_refactor(KluRefactor method) { refactor_method_ = method; }
   /// Solve A x = b in place. Precondition: factor() succeeded.
   void solve(std::span<double> rhs);
 
-  /// Reciprocal condition number estimate (cheap, from the diagonal of U).
+  /// Reciprocal condition number estimate (cheap, from the diagonal of U: min|u_jj|/max|u_jj|).
   [[nodiscard]] double rcond();
 
   [[nodiscard]] int full_factorizations() const { return full_factorizations_; }
@@ -75,6 +85,8 @@ class KluSolver {
   bool pivots_valid_ = false;
   RefactorCheck check_ = RefactorCheck::pivot_growth;
   KluSolve solve_method_ = KluSolve::extracted;
+  KluRefactor refactor_method_ = KluRefactor::runs;
+  double runs_rcond_ = -1.0;  // diagonal rcond of the last KluRefactor::runs factors, −1: KLU's
   bool extracted_valid_ = false;  // the extracted factors are those of the last factor()
   void extract(bool refactorized);
   int full_factorizations_ = 0;

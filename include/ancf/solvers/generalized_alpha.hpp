@@ -138,6 +138,8 @@ struct GeneralizedAlphaOptions {
   RefactorCheck refactor_check = RefactorCheck::diagonal;
   /// Solve of the factorized iteration matrix (KluSolve; klu = klu_l_solve as before issue 20c).
   KluSolve klu_solve = KluSolve::extracted;
+  /// Refactorization of the iteration matrix (KluRefactor; klu = klu_l_refactor as before).
+  KluRefactor klu_refactor = KluRefactor::runs;
 
   /// On Newton failure (with a fresh matrix) the step is halved from the last accepted state, at
   /// most this many times in a row; after recovery_steps accepted steps at a reduced size it is
