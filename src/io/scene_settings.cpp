@@ -69,6 +69,7 @@ IntegratorSettings read_integrator(TableReader& root) {
     s.ga_filter_error_estimate = ga->boolean_or("error_filter", s.ga_filter_error_estimate);
     s.ga_max_damping_halvings =
         static_cast<int>(ga->integer_or("newton_damping", s.ga_max_damping_halvings, 0));
+    s.ga_klu_refactor = ga->choice("refactor", {"runs", "klu"}, "runs") == "klu";
     if (!s.stabilized_index2 && s.rho_infinity >= 1.0)
       ga->fail("rho_infinity",
                "index 3 with rho_infinity = 1 is unstable: use rho_infinity < 1 or "

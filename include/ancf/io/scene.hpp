@@ -46,6 +46,7 @@ struct IntegratorSettings {
   GeneralizedAlphaStepChange ga_step_change = GeneralizedAlphaStepChange::automatic;
   bool ga_refresh_on_contact_change = false;
   int ga_max_damping_halvings = 0;       ///< damped Newton (GeneralizedAlphaOptions), 0: off
+  bool ga_klu_refactor = false;  ///< klu_l_refactor instead of the LU on the runs (KluRefactor)
   bool ga_filter_error_estimate = true;  ///< filtered local error estimate
   double ga_max_reuse_rate = 0.1;  ///< modified Newton's reuse threshold (GeneralizedAlphaOptions)
   /// Contact coupling blocks in the iteration matrix: those of the pairs that are near (default)
