@@ -16,6 +16,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "ida_vector_ops.hpp"
 #include "klu_linear_solver.hpp"
 
 namespace ancf {
@@ -259,9 +260,30 @@ struct IdaIntegrator::Impl {
       a[i] = f * problem.variable_scale(i);
       ids[i] = c == VariableClass::algebraic ? 0.0 : 1.0;
     }
-    check(IDASVtolerances(mem.get(), rtol, atol.get()), "IDASVtolerances");
+    if (options.compiled_vector_ops)
+      check(IDAWFtolerances(mem.get(), &Impl::weights_fn), "IDAWFtolerances");
+    else
+      check(IDASVtolerances(mem.get(), rtol, atol.get()), "IDASVtolerances");
     check(IDASetId(mem.get(), id.get()), "IDASetId");
     check(IDASetSuppressAlg(mem.get(), SUNTRUE), "IDASetSuppressAlg");
+  }
+
+  // IDA's error weights w_i = 1/(rtol |y_i| + atol_i) (IDASVtolerances' formula, evaluated as
+  // IDAEwtSetSV does: rtol·|y_i| + atol_i, then the reciprocal, so the weights are the same
+  // numbers) in one pass instead of four. −1 (IDA stops) if a denominator is not positive,
+  // also when it is NaN.
+  static int weights_fn(N_Vector y, N_Vector ewt, void* user) {
+    const auto& self = *static_cast<const Impl*>(user);
+    const double* ys = N_VGetArrayPointer(y);
+    const double* a = N_VGetArrayPointer(self.atol.get());
+    double* w = N_VGetArrayPointer(ewt);
+    const double rtol = self.options.rtol;
+    for (Index i = 0; i < self.n; ++i) {
+      const double d = rtol * std::abs(ys[i]) + a[i];
+      if (!(d > 0.0)) return -1;
+      w[i] = 1.0 / d;
+    }
+    return 0;
   }
 
   // First step from a second-order estimate: the BDF1 local error ½h²‖y''‖ with ‖y''‖ ≈ ‖y'‖/T
@@ -364,6 +386,8 @@ IdaIntegrator::IdaIntegrator(DaeProblem& problem, IdaOptions options)
   check(SUNContext_Create(nullptr, &ctx), "SUNContext_Create");
   s.context.reset(ctx);
   s.y.reset(check_pointer(N_VNew_Serial(s.n, ctx), "N_VNew_Serial"));
+  // Before any clone: IDA's own vectors are cloned from y and inherit its operations.
+  if (options_.compiled_vector_ops) detail::use_compiled_serial_ops(s.y.get());
   s.yp.reset(check_pointer(N_VClone(s.y.get()), "N_VClone"));
   s.id.reset(check_pointer(N_VClone(s.y.get()), "N_VClone"));
   s.atol.reset(check_pointer(N_VClone(s.y.get()), "N_VClone"));
@@ -397,6 +421,8 @@ IdaIntegrator::IdaIntegrator(DaeProblem& problem, IdaOptions options)
       check_pointer(SUNSparseMatrix(s.n, s.n, p.nonzeros(), CSC_MAT, ctx), "SUNSparseMatrix"));
   if (options_.linear_solver == IdaLinearSolver::ancf_klu) {
     s.own_klu = std::make_unique<detail::KluLinearSolver>(p);
+    s.own_klu->klu.set_solve(options_.klu_solve);
+    s.own_klu->klu.set_refactor(options_.klu_refactor);
     s.klu.reset(detail::make_klu_linear_solver(*s.own_klu, ctx));
   } else {
     s.klu.reset(check_pointer(SUNLinSol_KLU(s.y.get(), s.jacobian.get(), ctx), "SUNLinSol_KLU"));
@@ -424,9 +450,13 @@ std::span<const double> IdaIntegrator::yp() const {
   return view(impl_->yp.get());
 }
 
-IdaStop IdaIntegrator::advance(double t_out) { return solve(t_out, IDA_NORMAL); }
+IdaStop IdaIntegrator::advance(double t_out) {
+  return solve(t_out, IDA_NORMAL);
+}
 
-IdaStop IdaIntegrator::one_step(double t_out) { return solve(t_out, IDA_ONE_STEP); }
+IdaStop IdaIntegrator::one_step(double t_out) {
+  return solve(t_out, IDA_ONE_STEP);
+}
 
 IdaStop IdaIntegrator::solve(double t_out, int task) {
   Impl& s = *impl_;

@@ -32,6 +32,7 @@
 
 #include "ancf/core/dae_problem.hpp"
 #include "ancf/core/error.hpp"
+#include "ancf/core/klu_solver.hpp"
 
 namespace ancf {
 
@@ -65,6 +66,15 @@ struct IdaOptions {
   int max_nonlinear_iterations = 4, max_convergence_failures = 10, max_error_test_failures = 10;
   double klu_repivot_ratio = 1e3;  ///< see the file comment; ≤ 1 disables re-pivoting
   IdaLinearSolver linear_solver = IdaLinearSolver::ancf_klu;
+  /// ancf_klu only: how the KluSolver solves and refactorizes (KluSolve, KluRefactor).
+  KluSolve klu_solve = KluSolve::extracted;
+  KluRefactor klu_refactor = KluRefactor::runs;
+  /// IDA's vector work compiled with the project, same arithmetic: its serial N_Vector
+  /// operations (Debian's SUNDIALS 6.4.1 is built at -O0; src/solvers/ida_vector_ops.hpp),
+  /// single-pass fused operations, and the error weights 1/(rtol |y_i| + atol_i) in one loop
+  /// (IDAWFtolerances instead of IDASVtolerances' four vector passes). Results are bit-identical.
+  /// false: SUNDIALS' own operations (3e3daf4 … issue 20, third pass).
+  bool compiled_vector_ops = true;
   /// Per event function: +1 report only increasing, −1 only decreasing zero crossings, 0 both.
   /// Empty: both for all. (After a bounce the state sits just past the root; a direction keeps
   /// the reversed motion from re-triggering the event at once.)
