@@ -94,12 +94,15 @@ void BM_KluFactorPivoting(benchmark::State& state) {
 // One solve A x = b in place. The right-hand side is restored from a copy each iteration (an
 // O(n) copy, a few per cent of the solve) so that repeated solves do not drift into overflow or
 // denormals.
-// Arg 1: 1 = KluSolve::extracted (the default: the factors copied into sorted column runs),
-// 0 = KluSolve::klu (klu_l_solve).
+// Arg 1: 2 = KluSolve::reciprocal (the default: the factors copied into sorted column runs, U's
+// pivots as reciprocals), 1 = KluSolve::extracted (the same, dividing), 0 = KluSolve::klu
+// (klu_l_solve).
 void BM_KluSolve(benchmark::State& state) {
   const Index elements = state.range(0);
   KluSetup s(elements);
-  s.klu.set_solve(state.range(1) != 0 ? ancf::KluSolve::extracted : ancf::KluSolve::klu);
+  const ancf::KluSolve methods[] = {ancf::KluSolve::klu, ancf::KluSolve::extracted,
+                                    ancf::KluSolve::reciprocal};
+  s.klu.set_solve(methods[state.range(1)]);
   s.klu.factor(ancf::as_span(s.values));  // a refactorization: the solve method takes effect
   VecX x(s.rhs.size());
   for (auto _ : state) {
@@ -123,5 +126,5 @@ BENCHMARK(BM_KluFactorPivoting)
     ->Arg(10000)
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_KluSolve)
-    ->ArgsProduct({{20, 100, 1000, 10000}, {1, 0}})
+    ->ArgsProduct({{20, 100, 1000, 10000}, {2, 1, 0}})
     ->Unit(benchmark::kMicrosecond);

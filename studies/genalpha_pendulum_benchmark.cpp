@@ -17,6 +17,8 @@
 //                            [--pointwise-force] (force-only cable kernel of 3e3daf4)
 //                            [--pointwise-stiffness] (cable stiffness kernel of 3e3daf4)
 //                            [--klu-solve]       (klu_l_solve instead of the extracted factors)
+//                            [--divide-pivots]   (the extracted solve dividing by U's pivots)
+//                            [--steady-clock]    (time shares read steady_clock, not the TSC)
 //                            [--klu-refactor]    (klu_l_refactor instead of the LU on the runs)
 #include <fmt/format.h>
 #include <algorithm>
@@ -28,6 +30,7 @@
 #include <vector>
 
 #include "ancf/core/klu_solver.hpp"
+#include "ancf/core/stopwatch.hpp"
 #include "ancf/scenes/pendulums.hpp"
 #include "ancf/solvers/generalized_alpha.hpp"
 #include "ancf/system/multibody_problem.hpp"
@@ -127,7 +130,7 @@ int main(int argc, char** argv) {
   bool extrapolate = false;
   int runs = 9;
   bool reference = true, profile = false, pivot_growth = false, klu_solve = false,
-       klu_refactor = false;
+       divide_pivots = false, klu_refactor = false;
   Kernels kernels;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -160,6 +163,10 @@ int main(int argc, char** argv) {
       pivot_growth = true;
     else if (arg == "--klu-solve")
       klu_solve = true;
+    else if (arg == "--divide-pivots")
+      divide_pivots = true;
+    else if (arg == "--steady-clock")
+      ancf::TickClock::use_steady_clock(true);
     else if (arg == "--klu-refactor")
       klu_refactor = true;
     else if (arg == "--pointwise-force")
@@ -170,7 +177,8 @@ int main(int argc, char** argv) {
       std::fprintf(stderr,
                    "usage: %s [--elements N] [--step H] [--rho R] [--runs K] [--rtol TOL] "
                    "[--reuse-rate R] [--extrapolate] [--no-reference] [--profile] [--pivot-growth] "
-                   "[--pointwise-force] [--pointwise-stiffness] [--klu-solve] [--klu-refactor]\n",
+                   "[--pointwise-force] [--pointwise-stiffness] [--klu-solve] [--divide-pivots] "
+                   "[--klu-refactor]\n",
                    argv[0]);
       return 2;
     }
@@ -189,6 +197,7 @@ int main(int argc, char** argv) {
   fast.atol_velocity = rtol;
   fast.atol_multiplier = rtol;
   if (pivot_growth) fast.refactor_check = ancf::RefactorCheck::pivot_growth;
+  if (divide_pivots) fast.klu_solve = ancf::KluSolve::extracted;
   if (klu_solve) fast.klu_solve = ancf::KluSolve::klu;
   if (klu_refactor) fast.klu_refactor = ancf::KluRefactor::klu;
 

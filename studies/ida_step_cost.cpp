@@ -6,7 +6,9 @@
 // Usage: ancf-bench-ida-step [--elements N] [--order K] [--rtol R] [--runs M] [--no-reference]
 //                            [--ida-vectors]  (SUNDIALS' own vector operations and error weights)
 //                            [--klu-solve]    (klu_l_solve instead of the extracted factors)
+//                            [--divide-pivots] (the extracted solve dividing by U's pivots)
 //                            [--klu-refactor] (klu_l_refactor instead of the LU on the runs)
+//                            [--steady-clock] (time shares read steady_clock, not the TSC)
 //                            [--sundials-klu] (SUNLinSol_KLU instead of the project's KluSolver)
 //
 // Defaults: 20 elements, order ≤ 2, rtol 1e-5 (the fastest configuration of ancf-bench-ida with a
@@ -21,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "ancf/core/stopwatch.hpp"
 #include "ancf/scenes/pendulums.hpp"
 #include "ancf/solvers/ida_integrator.hpp"
 #include "ancf/system/ggl_problem.hpp"
@@ -89,6 +92,10 @@ int main(int argc, char** argv) {
       options.compiled_vector_ops = false;
     else if (arg == "--klu-solve")
       options.klu_solve = ancf::KluSolve::klu;
+    else if (arg == "--divide-pivots")
+      options.klu_solve = ancf::KluSolve::extracted;
+    else if (arg == "--steady-clock")
+      ancf::TickClock::use_steady_clock(true);
     else if (arg == "--klu-refactor")
       options.klu_refactor = ancf::KluRefactor::klu;
     else if (arg == "--sundials-klu")
@@ -96,7 +103,8 @@ int main(int argc, char** argv) {
     else {
       std::fprintf(stderr,
                    "usage: %s [--elements N] [--order K] [--rtol R] [--runs M] [--no-reference] "
-                   "[--ida-vectors] [--klu-solve] [--klu-refactor] [--sundials-klu]\n",
+                   "[--ida-vectors] [--klu-solve] [--divide-pivots] [--klu-refactor] "
+                   "[--sundials-klu] [--steady-clock]\n",
                    argv[0]);
       return 2;
     }

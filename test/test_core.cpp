@@ -2,13 +2,16 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <random>
+#include <thread>
 
 #include "ancf/core/error.hpp"
 #include "ancf/core/gauss_legendre.hpp"
 #include "ancf/core/klu_solver.hpp"
+#include "ancf/core/stopwatch.hpp"
 
 namespace ancf {
 namespace {
@@ -132,6 +135,7 @@ TEST(KluSolver, ExtractedSolveEqualsKlusOwnSolve) {
   p.freeze();
   KluSolver klu(p), extracted(p);  // round 1 refactorizes: the values move through the old map
   klu.set_solve(KluSolve::klu);
+  extracted.set_solve(KluSolve::extracted);
   extracted.set_refactor(KluRefactor::klu);  // KLU's own refactorization, then extracted
   for (const int round : {0, 1}) {
     VecX values(p.nonzeros());
@@ -163,7 +167,8 @@ TEST(KluSolver, ExtractedSolveEqualsKlusOwnSolveOnANodeChain) {
   // coupling neighbours), plus 3 constraint rows and columns on the first node with zero
   // diagonal (a saddle point: pivots off the diagonal), rows scaled over 6 decades. The
   // extracted solve must give klu_l_solve's answer bit for bit on KLU's factors (round 0); after
-  // refactorizations on the runs (rounds 1, 2) the answer must match the dense LU.
+  // refactorizations on the runs (rounds 1, 2) the answer must match the dense LU; reciprocal
+  // pivots must agree with the dividing solve to a few ε·cond.
   const Index nodes = 12, dofs = 6, n = nodes * dofs + 3;
   SparsityPattern p(n);
   for (Index a = 0; a < nodes; ++a)
@@ -178,8 +183,11 @@ TEST(KluSolver, ExtractedSolveEqualsKlusOwnSolveOnANodeChain) {
   p.freeze();
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  KluSolver klu(p), runs(p);
+  KluSolver klu(p), runs(p), reciprocal(p);
+  Index differing = 0;  // components where the reciprocal solve rounds differently
   klu.set_solve(KluSolve::klu);
+  runs.set_solve(KluSolve::extracted);
+  reciprocal.set_solve(KluSolve::reciprocal);
   for (const int round : {0, 1, 2}) {
     VecX values(p.nonzeros());
     MatX dense = MatX::Zero(n, n);
@@ -192,11 +200,22 @@ TEST(KluSolver, ExtractedSolveEqualsKlusOwnSolveOnANodeChain) {
       }
     klu.factor(as_span(values));
     runs.factor(as_span(values));
+    reciprocal.factor(as_span(values));
+    const Eigen::PartialPivLU<MatX> lu(dense);
+    const double cond = lu.inverse().cwiseAbs().rowwise().sum().maxCoeff() *
+                        dense.cwiseAbs().rowwise().sum().maxCoeff();
     for (int rhs = 0; rhs < 3; ++rhs) {
-      VecX b = VecX::NullaryExpr(n, [&] { return u(rng); }), x = b;
-      const VecX expected = dense.partialPivLu().solve(b);
+      VecX b = VecX::NullaryExpr(n, [&] { return u(rng); }), x = b, y = b;
+      const VecX expected = lu.solve(b);
       klu.solve(as_span(b));
       runs.solve(as_span(x));
+      // Reciprocal pivots: the same factors, one rounding more per pivot, so the answers agree
+      // to a few ε·cond, and somewhere they differ (else the reciprocals were not used).
+      reciprocal.solve(as_span(y));
+      differing += (y.array() != x.array()).count();
+      EXPECT_LT((y - x).lpNorm<Eigen::Infinity>(), 16 * kEps * cond * x.lpNorm<Eigen::Infinity>())
+          << "round " << round;
+      EXPECT_LT((y - expected).norm(), 1e-9 * expected.norm());
       if (round == 0) {
         for (Index i = 0; i < n; ++i) EXPECT_EQ(x[i], b[i]) << "row " << i;
       }
@@ -205,6 +224,8 @@ TEST(KluSolver, ExtractedSolveEqualsKlusOwnSolveOnANodeChain) {
   }
   EXPECT_EQ(runs.full_factorizations(), 1);
   EXPECT_EQ(runs.refactorizations(), 2);
+  EXPECT_EQ(reciprocal.refactorizations(), 2);
+  EXPECT_GT(differing, 0);
 }
 
 TEST(KluSolver, RunsRefactorizationAgreesWithKlus) {
@@ -281,6 +302,34 @@ TEST(KluSolver, ReportsASingularMatrix) {
   } catch (const SolverError& e) {
     EXPECT_NE(std::string(e.what()).find("singular"), std::string::npos) << e.what();
   }
+}
+
+}  // namespace
+}  // namespace ancf
+
+namespace ancf {
+namespace {
+
+// The stopwatch behind the time shares: over a 30 ms sleep (several scheduler ticks) the
+// time-stamp-counter reading and the steady_clock reading agree with steady_clock's own
+// interval to 2 % (the calibration is over 1 ms with ns readings: ~1e-6; the rest is the
+// distance between the reads), and both sum over repeated scopes.
+TEST(Stopwatch, AgreesWithSteadyClock) {
+  for (const bool steady : {false, true}) {
+    TickClock::use_steady_clock(steady);
+    double seconds = 0.0;
+    const auto start = std::chrono::steady_clock::now();
+    for (int k = 0; k < 3; ++k) {
+      const Stopwatch watch(seconds);
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    const double reference =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_GT(seconds, 0.030) << (steady ? "steady_clock" : "time-stamp counter");
+    EXPECT_NEAR(seconds, reference, 0.02 * reference)
+        << (steady ? "steady_clock" : "time-stamp counter");
+  }
+  TickClock::use_steady_clock(false);
 }
 
 }  // namespace

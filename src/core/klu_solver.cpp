@@ -2,10 +2,10 @@
 
 #include <klu.h>
 
-#include <chrono>
 #include <string>
 
 #include "ancf/core/error.hpp"
+#include "ancf/core/stopwatch.hpp"
 #include "run_lu_factors.hpp"
 
 namespace ancf {
@@ -16,7 +16,7 @@ struct KluSolver::Impl {
   klu_l_common common{};
   klu_l_symbolic* symbolic = nullptr;
   klu_l_numeric* numeric = nullptr;
-  detail::RunLuFactors factors;  // KluSolve::extracted
+  detail::RunLuFactors factors;  // KluSolve::extracted and reciprocal
   ~Impl() {
     if (numeric) klu_l_free_numeric(&numeric, &common);
     if (symbolic) klu_l_free_symbolic(&symbolic, &common);
@@ -24,20 +24,6 @@ struct KluSolver::Impl {
 };
 
 namespace {
-using Clock = std::chrono::steady_clock;
-// Adds the wall time of a scope to a counter (also when it is left by an exception).
-class Stopwatch {
- public:
-  explicit Stopwatch(double& seconds) : seconds_(seconds), start_(Clock::now()) {}
-  ~Stopwatch() { seconds_ += std::chrono::duration<double>(Clock::now() - start_).count(); }
-  Stopwatch(const Stopwatch&) = delete;
-  Stopwatch& operator=(const Stopwatch&) = delete;
-
- private:
-  double& seconds_;
-  Clock::time_point start_;
-};
-
 // KLU's C interface takes non-const pointers but does not modify the pattern arrays.
 SuiteSparse_long* mutable_ptr(const std::vector<Index>& v) {
   return const_cast<SuiteSparse_long*>(reinterpret_cast<const SuiteSparse_long*>(v.data()));
@@ -82,12 +68,12 @@ void KluSolver::factor(std::span<const double> values) {
   extracted_valid_ = false;
   runs_rcond_ = -1.0;
   if (pivots_valid_ && k.numeric && refactor_method_ == KluRefactor::runs &&
-      solve_method_ == KluSolve::extracted && factors_loaded) {
-    const auto quality = k.factors.refactor(pattern_.column_start().data(),
-                                            pattern_.row_index().data(), values);
+      solve_method_ != KluSolve::klu && factors_loaded) {
+    const auto quality =
+        k.factors.refactor(pattern_.column_start().data(), pattern_.row_index().data(), values);
     // The same guards as below, computed in the same pass.
-    const bool good = check_ == RefactorCheck::pivot_growth ? quality.growth > 1e-10
-                                                           : quality.diagonal > 1e-13;
+    const bool good =
+        check_ == RefactorCheck::pivot_growth ? quality.growth > 1e-10 : quality.diagonal > 1e-13;
     if (good) {
       ++refactorizations_;
       extracted_valid_ = true;
@@ -128,8 +114,9 @@ void KluSolver::factor(std::span<const double> values) {
 }
 
 void KluSolver::extract(bool refactorized) {
-  if (solve_method_ != KluSolve::extracted) return;
+  if (solve_method_ == KluSolve::klu) return;
   Impl& k = *impl_;
+  k.factors.set_reciprocal_pivots(solve_method_ == KluSolve::reciprocal);
   if (!k.factors.load(k.numeric, k.symbolic, &k.common, refactorized))
     throw SolverError("KLU factor extraction failed, status " + std::to_string(k.common.status));
   extracted_valid_ = true;

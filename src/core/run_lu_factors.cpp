@@ -109,6 +109,8 @@ bool RunLuFactors::load(klu_l_numeric* numeric, klu_l_symbolic* symbolic, klu_l_
   l_.fill(lx_, unit_diagonal_);
   u_.fill(ux_, diagonal_);
   f_.fill(fx_, unit_diagonal_);  // F has no diagonal entries
+  fit(inverse_diagonal_, static_cast<std::size_t>(n_));
+  for (Index j = 0; j < n_; ++j) inverse_diagonal_[j] = 1.0 / diagonal_[j];
   return true;
 }
 
@@ -125,7 +127,12 @@ void RunLuFactors::solve(std::span<double> b) {
     for (Index j = k1; j < k2; ++j)
       if (c[j] != 0.0) column(l_, j, c[j]);
     for (Index j = k2 - 1; j >= k1; --j) {
-      c[j] /= diagonal_[j];
+      // The reciprocal: a multiplication (4 cycles) instead of a division (13–20) on the
+      // critical path of the back substitution; one rounding more per pivot.
+      if (reciprocal_pivots_)
+        c[j] *= inverse_diagonal_[j];
+      else
+        c[j] /= diagonal_[j];
       if (c[j] != 0.0) column(u_, j, c[j]);
     }
     for (Index j = k1; j < k2; ++j)
@@ -141,7 +148,8 @@ bool RunLuFactors::map_matrix(const Index* ap, const Index* ai) {
   fit(m.row_of, n);
   for (Index k = 0; k < n_; ++k) m.row_of[perm_row_[k]] = k;
   fit(m.inside_start, n + 1);
-  for (auto* v : {&m.inside_source, &m.inside_row, &m.outside_source, &m.outside_value}) fit(*v, nnz);
+  for (auto* v : {&m.inside_source, &m.inside_row, &m.outside_source, &m.outside_value})
+    fit(*v, nnz);
   for (auto* v : {&m.inside_factor, &m.outside_factor}) fit(*v, nnz);
   Index inside = 0, outside = 0;
   for (Index blk = 0; blk < blocks_; ++blk) {
@@ -184,15 +192,11 @@ RunLuFactors::PivotQuality RunLuFactors::refactor(const Index* ap, const Index* 
   const double* a = ax.data();
   PivotQuality quality{1.0, 1.0};
   double smallest_pivot = INFINITY, largest_pivot = 0.0;
-  auto zero_column = [&](const Runs& r, Index j) {
-    for (Index q = r.col_runs[j]; q < r.col_runs[j + 1]; ++q)
-      std::fill_n(x + r.first[q], r.length[q], 0.0);
-  };
+  // x is zero before each column: every entry a column writes (A's entries lie in the pattern
+  // of L + U) is set back to zero where it is read for the last time, below.
+  std::fill_n(x, n_, 0.0);
   for (Index j = 0; j < n_; ++j) {
-    // Column j of Ã (block part) into x, which is zero on the column's pattern first.
-    zero_column(u_, j);
-    zero_column(l_, j);
-    x[j] = 0.0;
+    // Column j of Ã (block part) into x.
     double largest_a = 0.0;
     for (Index e = m.inside_start[j]; e < m.inside_start[j + 1]; ++e) {
       const double v = a[m.inside_source[e]] * m.inside_factor[e];
@@ -208,6 +212,7 @@ RunLuFactors::PivotQuality RunLuFactors::refactor(const Index* ap, const Index* 
         const Index k = u_.first[q] + t;
         const double ukj = x[k];
         u[t] = ukj;
+        x[k] = 0.0;  // later columns of L only touch rows below k
         largest_u = std::max(largest_u, std::abs(ukj));
         if (ukj == 0.0) continue;
         for (Index r = l_.col_runs[k]; r < l_.col_runs[k + 1]; ++r)
@@ -215,8 +220,10 @@ RunLuFactors::PivotQuality RunLuFactors::refactor(const Index* ap, const Index* 
       }
     }
     const double pivot = x[j];
+    x[j] = 0.0;
     if (!(std::abs(pivot) > 0.0) || !std::isfinite(pivot)) return {0.0, 0.0};
     diagonal_[j] = pivot;
+    inverse_diagonal_[j] = 1.0 / pivot;
     largest_u = std::max(largest_u, std::abs(pivot));
     smallest_pivot = std::min(smallest_pivot, std::abs(pivot));
     largest_pivot = std::max(largest_pivot, std::abs(pivot));
@@ -225,8 +232,11 @@ RunLuFactors::PivotQuality RunLuFactors::refactor(const Index* ap, const Index* 
     const double inverse = 1.0 / pivot;
     for (Index q = l_.col_runs[j]; q < l_.col_runs[j + 1]; ++q) {
       double* l = l_.value.data() + l_.offset[q];
-      const double* xs = x + l_.first[q];
-      for (Index t = 0; t < l_.length[q]; ++t) l[t] = xs[t] * inverse;
+      double* xs = x + l_.first[q];
+      for (Index t = 0; t < l_.length[q]; ++t) {
+        l[t] = xs[t] * inverse;
+        xs[t] = 0.0;
+      }
     }
   }
   for (Index e = 0; e < m.outside_entries; ++e)

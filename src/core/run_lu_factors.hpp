@@ -9,7 +9,8 @@
 // is that of klu_solve with one difference in storage: the row indices of each column of L, U
 // and F are sorted and stored as runs of consecutive rows, so that the update of column j is one
 // contiguous axpy per run (vectorized), not an indexed scatter per entry. For the banded
-// matrices of cables most columns are a single run.
+// matrices of cables most columns are a single run. With reciprocal pivots (KluSolve::reciprocal)
+// the division by u_jj becomes a multiplication by 1/u_jj, computed once per factorization.
 //
 // refactor() (KluRefactor::runs of klu_solver.hpp) recomputes these factors
 // for new values of A with the pivot order, row scaling and structure of the last full load:
@@ -35,6 +36,9 @@ class RunLuFactors {
   /// have more entries than at any earlier load. Returns false if KLU fails.
   bool load(klu_l_numeric* numeric, klu_l_symbolic* symbolic, klu_l_common* common,
             bool same_structure);
+  /// U's pivots applied as stored reciprocals (KluSolve::reciprocal) or by division as
+  /// klu_solve does (KluSolve::extracted, bit-identical to klu_l_solve).
+  void set_reciprocal_pivots(bool on) { reciprocal_pivots_ = on; }
   /// Solve A x = b in place (b overwritten with x); precondition: load() succeeded.
   void solve(std::span<double> b);
 
@@ -78,8 +82,9 @@ class RunLuFactors {
   Scatter scatter_;
   Index n_ = 0, blocks_ = 0;
   std::vector<Index> lp_, li_, up_, ui_, fp_, fi_, perm_row_, perm_col_, block_start_;
-  std::vector<double> lx_, ux_, fx_, scale_, diagonal_, unit_diagonal_, work_;
+  std::vector<double> lx_, ux_, fx_, scale_, diagonal_, inverse_diagonal_, unit_diagonal_, work_;
   Runs l_, u_, f_;
+  bool reciprocal_pivots_ = true;
 };
 
 }  // namespace ancf::detail

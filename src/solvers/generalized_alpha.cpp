@@ -2,32 +2,14 @@
 
 #include <fmt/format.h>
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
 #include "ancf/core/error.hpp"
+#include "ancf/core/stopwatch.hpp"
 
 namespace ancf {
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-// Adds the time spent in a scope to a counter (also when the scope is left by an exception).
-class ScopedTimer {
- public:
-  explicit ScopedTimer(double& seconds) : seconds_(seconds), start_(Clock::now()) {}
-  ~ScopedTimer() { seconds_ += std::chrono::duration<double>(Clock::now() - start_).count(); }
-  ScopedTimer(const ScopedTimer&) = delete;
-  ScopedTimer& operator=(const ScopedTimer&) = delete;
-
- private:
-  double& seconds_;
-  Clock::time_point start_;
-};
-
-}  // namespace
 
 GeneralizedAlphaParameters GeneralizedAlphaParameters::chung_hulbert(double rho) {
   if (!(rho >= 0.0 && rho <= 1.0))
@@ -195,7 +177,7 @@ void GeneralizedAlphaStepper::initialize(double t0, const VecX& q0, const VecX& 
   klu_base_[4] = klu_.symbolic_analyses() + projector_.symbolic_analyses();
   klu_seconds_base_[0] = klu_.factor_seconds() + projector_.factor_seconds();
   klu_seconds_base_[1] = klu_.solve_seconds() + projector_.solve_seconds();
-  ScopedTimer timer(stats_.wall_seconds);
+  Stopwatch timer(stats_.wall_seconds);
   t_ = t0;
   t_base_ = t0;
   steps_from_base_ = 0;
@@ -346,7 +328,7 @@ void GeneralizedAlphaStepper::accept(double t1, double h, bool on_base, bool las
 
 void GeneralizedAlphaStepper::step(double t_limit) {
   if (!initialized_) throw std::logic_error("GeneralizedAlphaStepper::step before initialize()");
-  ScopedTimer timer(stats_.wall_seconds);
+  Stopwatch timer(stats_.wall_seconds);
   const double remaining = t_limit - t_;
   if (!(remaining > 0.0)) return;
   const double h_min = controller_.options().h_min;

@@ -16,6 +16,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "ancf/core/stopwatch.hpp"
 #include "ida_vector_ops.hpp"
 #include "klu_linear_solver.hpp"
 
@@ -62,20 +63,6 @@ T* check_pointer(T* p, const char* call) {
   if (!p) throw SolverError(fmt::format("SUNDIALS: {} returned NULL", call));
   return p;
 }
-
-using Clock = std::chrono::steady_clock;
-// Adds the wall time of a scope to a counter.
-class Stopwatch {
- public:
-  explicit Stopwatch(double& seconds) : seconds_(seconds), start_(Clock::now()) {}
-  ~Stopwatch() { seconds_ += std::chrono::duration<double>(Clock::now() - start_).count(); }
-  Stopwatch(const Stopwatch&) = delete;
-  Stopwatch& operator=(const Stopwatch&) = delete;
-
- private:
-  double& seconds_;
-  Clock::time_point start_;
-};
 
 std::span<double> view(N_Vector v) {
   return {N_VGetArrayPointer(v), static_cast<std::size_t>(N_VGetLength(v))};

@@ -2,20 +2,15 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
+#include "ancf/core/stopwatch.hpp"
 #include "ancf/system/contact_pattern.hpp"
 #include "contact_sampling.hpp"
 
 namespace ancf {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 using BlockVec = std::array<Vec3, AffineVector::kMaxTerms>;
 
@@ -190,7 +185,7 @@ void add_iteration_matrix_to(const Model& model, const SystemState& state,
   const auto frames = ws.frames_at(model, state.t);
   const auto q = as_span(state.q), v = as_span(state.v);
 
-  const auto element_start = Clock::now();
+  const auto element_start = TickClock::now();
   for_each_element(
       model, state.q, state.v,
       [&](Index ci, Index j, const CableData& c, Index, const Vec12& e, const Vec12& e_dot) {
@@ -220,7 +215,7 @@ void add_iteration_matrix_to(const Model& model, const SystemState& state,
           add_mass_matrix(c.mass[j], slots, w.w_v * c.section.mass_damping, t);
       });
   detail::add_rod_matrix(model, state, w, ws, t);
-  ws.element_seconds += seconds_since(element_start);
+  ws.element_seconds += TickClock::seconds_since(element_start);
   if (w.w_a != 0.0)
     for (Index b = 0; b < static_cast<Index>(model.bodies().size()); ++b)
       add_mass_matrix(model.bodies()[b].mass, model.body_slots(b), w.w_a, t);
@@ -239,12 +234,12 @@ void add_iteration_matrix_to(const Model& model, const SystemState& state,
     subtract_force_jacobian(f.slots, ws.force, w.w_q, w.w_v, t);
   }
   if (model.contact_pair_count() > 0 && (w.w_q != 0.0 || w.w_v != 0.0)) {
-    const auto contact_start = Clock::now();
+    const auto contact_start = TickClock::now();
     MatrixContactSink<Target> sink(t, w.w_q, w.w_v);
     detail::visit_contact_samples(model, state, ws, {.jacobians = true, .all_samples = false},
                                   sink);
     ws.missing_coupling_samples += sink.missing;
-    ws.contact_seconds += seconds_since(contact_start);
+    ws.contact_seconds += TickClock::seconds_since(contact_start);
   }
 
   // Constraint blocks Φ_q, Φ_qᵀ and the geometric stiffness w_q ∂(Φ_qᵀλ)/∂q = w_q λ α_k β_m I₃.
@@ -341,7 +336,7 @@ void assemble_residual(const Model& model, const SystemState& state, double load
   const auto frames = ws.frames_at(model, state.t);
   const auto q = as_span(state.q), v = as_span(state.v);
 
-  const auto element_start = Clock::now();
+  const auto element_start = TickClock::now();
   for_each_element(
       model, state.q, state.v,
       [&](Index, Index j, const CableData& c, Index base, const Vec12& e, const Vec12& e_dot) {
@@ -353,7 +348,7 @@ void assemble_residual(const Model& model, const SystemState& state, double load
           add_mass_times(c.section.mass_damping * c.mass[j], base, state.v, rq);
       });
   detail::add_rod_residual(model, state, load_factor, inertia, ws, rq);
-  ws.element_seconds += seconds_since(element_start);
+  ws.element_seconds += TickClock::seconds_since(element_start);
   if (inertia)
     for (const BodyData& b : model.bodies())
       add_mass_times(b.mass, b.first_coordinate, state.a, rq);
@@ -375,11 +370,11 @@ void assemble_residual(const Model& model, const SystemState& state, double load
     subtract_force(f.blocks, ws.force, 1.0, rq);
   }
   if (model.contact_pair_count() > 0) {
-    const auto contact_start = Clock::now();
+    const auto contact_start = TickClock::now();
     ResidualContactSink sink(rq, ws.active_contact_signature);
     detail::visit_contact_samples(model, state, ws, {.jacobians = false, .all_samples = false},
                                   sink);
-    ws.contact_seconds += seconds_since(contact_start);
+    ws.contact_seconds += TickClock::seconds_since(contact_start);
   }
 
   BlockVec gu, gw;

@@ -1,14 +1,8 @@
 #include "ancf/system/multibody_problem.hpp"
 
-#include <chrono>
+#include "ancf/core/stopwatch.hpp"
 
 namespace ancf {
-namespace {
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-}  // namespace
 
 MultibodyProblem::MultibodyProblem(const Model& model, ContactPatternOptions contact)
     : model_(model),
@@ -35,21 +29,21 @@ void MultibodyProblem::load(double t, std::span<const double> q, std::span<const
 void MultibodyProblem::residual(double t, std::span<const double> q, std::span<const double> v,
                                 std::span<const double> a, std::span<const double> lambda,
                                 std::span<double> r) {
-  const auto start = Clock::now();
+  const auto start = TickClock::now();
   load(t, q, v, a, lambda);
   assemble_residual(model_, state_, 1.0, workspace_, r);
-  residual_seconds_ += seconds_since(start);
+  residual_seconds_ += TickClock::seconds_since(start);
 }
 
 void MultibodyProblem::iteration_matrix(double t, std::span<const double> q,
                                         std::span<const double> v, std::span<const double> a,
                                         std::span<const double> lambda, const MatrixWeights& w,
                                         std::span<double> values) {
-  const auto start = Clock::now();
+  const auto start = TickClock::now();
   load(t, q, v, a, lambda);
   assemble_iteration_matrix(model_, state_, IterationWeights{w.w_q, w.w_v, w.w_a, 1.0}, contact_,
                             workspace_, values);
-  matrix_seconds_ += seconds_since(start);
+  matrix_seconds_ += TickClock::seconds_since(start);
 }
 
 void MultibodyProblem::constraints(double t, std::span<const double> q, std::span<double> phi) {

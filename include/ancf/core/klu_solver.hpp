@@ -28,9 +28,13 @@ enum class RefactorCheck {
 
 /// How solve() runs after a factorization.
 enum class KluSolve {
-  klu,        ///< klu_l_solve on KLU's packed factors (3e3daf4 … issue 20)
-  extracted,  ///< the factors copied out once per factorization into sorted column runs
-              ///< (src/core/run_lu_factors.hpp): the same substitutions, vectorized updates
+  klu,         ///< klu_l_solve on KLU's packed factors (3e3daf4 … issue 20)
+  extracted,   ///< the factors copied out once per factorization into sorted column runs
+               ///< (src/core/run_lu_factors.hpp): the same substitutions, vectorized updates
+               ///< (bit-identical to klu_l_solve)
+  reciprocal,  ///< extracted, with U's pivots applied as reciprocals stored per factorization:
+               ///< a multiplication instead of a division on the back substitution's critical
+               ///< path (one rounding more per pivot; not bit-identical to klu_l_solve)
 };
 
 /// How a refactorization (same pivot order) is computed.
@@ -38,7 +42,7 @@ enum class KluRefactor {
   klu,   ///< klu_l_refactor, then the factors extracted for KluSolve::extracted (… issue 15c/20c)
   runs,  ///< left-looking LU on the extracted factors' column runs with the last full
          ///< factorization's pivots and row scaling (src/core/run_lu_factors.hpp); needs
-         ///< KluSolve::extracted, else klu is used
+         ///< KluSolve::extracted or reciprocal, else klu is used
 };
 
 class KluSolver {
@@ -58,7 +62,7 @@ class KluSolver {
   void reset_pivoting() { pivots_valid_ = false; }
   /// How a refactorization is checked before it is accepted (default pivot_growth).
   void set_refactor_check(RefactorCheck check) { check_ = check; }
-  /// How solve() works (default extracted); takes effect at the next factor().
+  /// How solve() works (default reciprocal); takes effect at the next factor().
   void set_solve(KluSolve method) { solve_method_ = method; }
   /// How a refactorization is computed (default runs); takes effect at the next factor().
   void set_refactor(KluRefactor method) { refactor_method_ = method; }
@@ -84,7 +88,7 @@ class KluSolver {
   const SparsityPattern& pattern_;
   bool pivots_valid_ = false;
   RefactorCheck check_ = RefactorCheck::pivot_growth;
-  KluSolve solve_method_ = KluSolve::extracted;
+  KluSolve solve_method_ = KluSolve::reciprocal;
   KluRefactor refactor_method_ = KluRefactor::runs;
   double runs_rcond_ = -1.0;  // diagonal rcond of the last KluRefactor::runs factors, −1: KLU's
   bool extracted_valid_ = false;  // the extracted factors are those of the last factor()

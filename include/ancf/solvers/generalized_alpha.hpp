@@ -137,7 +137,7 @@ struct GeneralizedAlphaOptions {
   /// each refactorization on the benchmark pendulum (studies/README.md).
   RefactorCheck refactor_check = RefactorCheck::diagonal;
   /// Solve of the factorized iteration matrix (KluSolve; klu = klu_l_solve as before issue 20c).
-  KluSolve klu_solve = KluSolve::extracted;
+  KluSolve klu_solve = KluSolve::reciprocal;
   /// Refactorization of the iteration matrix (KluRefactor; klu = klu_l_refactor as before).
   KluRefactor klu_refactor = KluRefactor::runs;
 

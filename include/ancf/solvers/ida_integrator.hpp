@@ -67,7 +67,7 @@ struct IdaOptions {
   double klu_repivot_ratio = 1e3;  ///< see the file comment; ≤ 1 disables re-pivoting
   IdaLinearSolver linear_solver = IdaLinearSolver::ancf_klu;
   /// ancf_klu only: how the KluSolver solves and refactorizes (KluSolve, KluRefactor).
-  KluSolve klu_solve = KluSolve::extracted;
+  KluSolve klu_solve = KluSolve::reciprocal;
   KluRefactor klu_refactor = KluRefactor::runs;
   /// IDA's vector work compiled with the project, same arithmetic: its serial N_Vector
   /// operations (Debian's SUNDIALS 6.4.1 is built at -O0; src/solvers/ida_vector_ops.hpp),
