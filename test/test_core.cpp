@@ -310,21 +310,20 @@ TEST(KluSolver, ReportsASingularMatrix) {
 namespace ancf {
 namespace {
 
-// The stopwatch behind the time shares: over a 30 ms sleep (several scheduler ticks) the
-// time-stamp-counter reading and the steady_clock reading agree with steady_clock's own
-// interval to 2 % (the calibration is over 1 ms with ns readings: ~1e-6; the rest is the
-// distance between the reads), and both sum over repeated scopes.
+// The stopwatch behind the time shares: over three 10 ms sleeps the time-stamp-counter reading
+// and the steady_clock reading agree to 2 % with steady_clock intervals read just inside the
+// same scopes (the calibration is over 1 ms with ns readings: ~1e-6; the rest is the distance
+// between the reads), and the scopes are summed.
 TEST(Stopwatch, AgreesWithSteadyClock) {
   for (const bool steady : {false, true}) {
     TickClock::use_steady_clock(steady);
-    double seconds = 0.0;
-    const auto start = std::chrono::steady_clock::now();
+    double seconds = 0.0, reference = 0.0;
     for (int k = 0; k < 3; ++k) {
       const Stopwatch watch(seconds);
+      const auto start = std::chrono::steady_clock::now();
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      reference += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
-    const double reference =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     EXPECT_GT(seconds, 0.030) << (steady ? "steady_clock" : "time-stamp counter");
     EXPECT_NEAR(seconds, reference, 0.02 * reference)
         << (steady ? "steady_clock" : "time-stamp counter");

@@ -26,6 +26,8 @@ IntegratorSettings read_integrator(TableReader& root) {
     s.max_step = ida->number_or("max_step", s.max_step, Range::non_negative);
     s.max_order = static_cast<int>(ida->integer_or("max_order", s.max_order, 1));
     if (s.max_order > 5) ida->fail("max_order", "expected a BDF order 1 … 5");
+    s.ida_sundials_vector_ops =
+        ida->choice("vector_ops", {"compiled", "sundials"}, "compiled") == "sundials";
     s.ida_slope_position_scale = ida->choice("slope_scale", {"unit", "position_equivalent"},
                                              "unit") == "position_equivalent";
     s.ida_sundials_klu =

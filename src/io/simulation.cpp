@@ -115,6 +115,7 @@ class IdaBackend final : public Simulation::Backend {
     o.atol_multiplier = s.ida_atol_multiplier;
     o.max_step = s.max_step;
     o.max_order = s.max_order;
+    o.compiled_vector_ops = !s.ida_sundials_vector_ops;
     o.linear_solver =
         s.ida_sundials_klu ? IdaLinearSolver::sundials_klu : IdaLinearSolver::ancf_klu;
     o.output_times = times;

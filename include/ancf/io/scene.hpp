@@ -30,6 +30,7 @@ struct IntegratorSettings {
   double ida_atol_position = -1.0, ida_atol_velocity = -1.0, ida_atol_multiplier = -1.0;
   double max_step = 0.0;                  ///< IDA step limit [s]; 0: none
   int max_order = 5;                      ///< IDA BDF order limit, 1 … 5
+  bool ida_sundials_vector_ops = false;  ///< IDA: SUNDIALS' own vector operations (IdaOptions)
   bool ida_sundials_klu = false;          ///< IDA: SUNDIALS' SUNLinSol_KLU instead of the project's
   bool ida_slope_position_scale = false;  ///< IDA: SlopeScale::position_equivalent tolerances
   double step = 1e-3;                     ///< generalized-α step size h [s] > 0
