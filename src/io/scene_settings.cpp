@@ -100,9 +100,8 @@ OutputSettings read_output(TableReader& root, SceneBuild& b) {
   };
   for (TableReader& p : t.tables("probe")) {
     Probe probe;
-    const std::string kind = p.choice(
-        "kind", {"node", "body", "energy", "constraint_violation", "contact", "drive", "reaction",
-                 "rod"});
+    const std::string kind = p.choice("kind", {"node", "body", "energy", "constraint_violation",
+                                               "contact", "drive", "reaction", "rod"});
     std::string label = kind;
     if (kind == "node") {
       probe.kind = Probe::Kind::node;

@@ -30,7 +30,7 @@ struct IntegratorSettings {
   double ida_atol_position = -1.0, ida_atol_velocity = -1.0, ida_atol_multiplier = -1.0;
   double max_step = 0.0;                  ///< IDA step limit [s]; 0: none
   int max_order = 5;                      ///< IDA BDF order limit, 1 … 5
-  bool ida_sundials_vector_ops = false;  ///< IDA: SUNDIALS' own vector operations (IdaOptions)
+  bool ida_sundials_vector_ops = false;   ///< IDA: SUNDIALS' own vector operations (IdaOptions)
   bool ida_sundials_klu = false;          ///< IDA: SUNDIALS' SUNLinSol_KLU instead of the project's
   bool ida_slope_position_scale = false;  ///< IDA: SlopeScale::position_equivalent tolerances
   double step = 1e-3;                     ///< generalized-α step size h [s] > 0
@@ -46,8 +46,8 @@ struct IntegratorSettings {
   StepControllerOptions ga_controller;
   GeneralizedAlphaStepChange ga_step_change = GeneralizedAlphaStepChange::automatic;
   bool ga_refresh_on_contact_change = false;
-  int ga_max_damping_halvings = 0;       ///< damped Newton (GeneralizedAlphaOptions), 0: off
-  bool ga_klu_refactor = false;  ///< klu_l_refactor instead of the LU on the runs (KluRefactor)
+  int ga_max_damping_halvings = 0;  ///< damped Newton (GeneralizedAlphaOptions), 0: off
+  bool ga_klu_refactor = false;     ///< klu_l_refactor instead of the LU on the runs (KluRefactor)
   bool ga_filter_error_estimate = true;  ///< filtered local error estimate
   double ga_max_reuse_rate = 0.1;  ///< modified Newton's reuse threshold (GeneralizedAlphaOptions)
   /// Contact coupling blocks in the iteration matrix: those of the pairs that are near (default)
@@ -63,7 +63,7 @@ struct Probe {
   Kind kind = Kind::energy;
   std::string label;  ///< column prefix
   Index target = -1;  ///< cable (node), body, contact pair or drive index; unused otherwise
-  Index node = 0;     ///< node index (≥ 0, resolved) for Kind::node, Kind::rod and a node's reaction
+  Index node = 0;  ///< node index (≥ 0, resolved) for Kind::node, Kind::rod and a node's reaction
   /// Kind::reaction: the joint's name; it acts on node `node` of cable `target`, or on body
   /// `target` (on_body); its constraints (Model::constraints() indices: the joint's own and,
   /// for clamp / slope options, NAME.slope), resolved when the model is finalized.
