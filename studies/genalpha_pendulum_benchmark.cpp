@@ -19,6 +19,8 @@
 //                            [--klu-solve]       (klu_l_solve instead of the extracted factors)
 //                            [--divide-pivots]   (the extracted solve dividing by U's pivots)
 //                            [--steady-clock]    (time shares read steady_clock, not the TSC)
+//                            [--rescale-at-halvings] (fixed stepping rescales a at a change of h
+//                                                instead of restarting; not the default)
 //                            [--klu-refactor]    (klu_l_refactor instead of the LU on the runs)
 #include <fmt/format.h>
 #include <algorithm>
@@ -130,7 +132,7 @@ int main(int argc, char** argv) {
   bool extrapolate = false;
   int runs = 9;
   bool reference = true, profile = false, pivot_growth = false, klu_solve = false,
-       divide_pivots = false, klu_refactor = false;
+       divide_pivots = false, rescale_at_halvings = false, klu_refactor = false;
   Kernels kernels;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -165,6 +167,8 @@ int main(int argc, char** argv) {
       klu_solve = true;
     else if (arg == "--divide-pivots")
       divide_pivots = true;
+    else if (arg == "--rescale-at-halvings")
+      rescale_at_halvings = true;
     else if (arg == "--steady-clock")
       ancf::TickClock::use_steady_clock(true);
     else if (arg == "--klu-refactor")
@@ -178,7 +182,7 @@ int main(int argc, char** argv) {
                    "usage: %s [--elements N] [--step H] [--rho R] [--runs K] [--rtol TOL] "
                    "[--reuse-rate R] [--extrapolate] [--no-reference] [--profile] [--pivot-growth] "
                    "[--pointwise-force] [--pointwise-stiffness] [--klu-solve] [--divide-pivots] "
-                   "[--klu-refactor]\n",
+                   "[--steady-clock] [--rescale-at-halvings] [--klu-refactor]\n",
                    argv[0]);
       return 2;
     }
@@ -198,6 +202,7 @@ int main(int argc, char** argv) {
   fast.atol_multiplier = rtol;
   if (pivot_growth) fast.refactor_check = ancf::RefactorCheck::pivot_growth;
   if (divide_pivots) fast.klu_solve = ancf::KluSolve::extracted;
+  if (rescale_at_halvings) fast.step_change = ancf::GeneralizedAlphaStepChange::rescale;
   if (klu_solve) fast.klu_solve = ancf::KluSolve::klu;
   if (klu_refactor) fast.klu_refactor = ancf::KluRefactor::klu;
 
