@@ -41,6 +41,7 @@ FULL = [
     ("genalpha adaptive rtol=1e-5", ["--integrator", "genalpha", "--set",
                                      'genalpha.stepping="error_controlled"',
                                      "--set", "genalpha.error_rtol=1e-5"]),
+    ("genalpha adaptive --fast", ["--integrator", "genalpha", "--fast"]),
     ("ida rtol=1e-4", ["--integrator", "ida", "--rtol", "1e-4",
                        "--set", 'ida.slope_scale="position_equivalent"']),
     ("ida rtol=1e-5", ["--integrator", "ida", "--rtol", "1e-5",
@@ -48,7 +49,7 @@ FULL = [
     ("ida rtol=1e-6", ["--integrator", "ida", "--rtol", "1e-6",
                        "--set", 'ida.slope_scale="position_equivalent"']),
 ]
-QUICK = [FULL[0], FULL[1], FULL[3], FULL[6]]
+QUICK = [FULL[0], FULL[1], FULL[3], FULL[7]]
 
 
 def run(label, args, opt):
