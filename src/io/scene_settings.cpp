@@ -72,6 +72,7 @@ IntegratorSettings read_integrator(TableReader& root) {
     s.ga_max_damping_halvings =
         static_cast<int>(ga->integer_or("newton_damping", s.ga_max_damping_halvings, 0));
     s.ga_klu_refactor = ga->choice("refactor", {"runs", "klu"}, "runs") == "klu";
+    s.ga_recovery_backoff = ga->boolean_or("recovery_backoff", s.ga_recovery_backoff);
     if (!s.stabilized_index2 && s.rho_infinity >= 1.0)
       ga->fail("rho_infinity",
                "index 3 with rho_infinity = 1 is unstable: use rho_infinity < 1 or "

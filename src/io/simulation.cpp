@@ -231,6 +231,7 @@ class GeneralizedAlphaBackend final : public Simulation::Backend {
     o.refresh_on_active_set_change = s.ga_refresh_on_contact_change;
     o.max_damping_halvings = s.ga_max_damping_halvings;
     if (s.ga_klu_refactor) o.klu_refactor = KluRefactor::klu;
+    o.recovery_backoff = s.ga_recovery_backoff;
     o.filter_error_estimate = s.ga_filter_error_estimate;
     o.max_reuse_rate = s.ga_max_reuse_rate;
     return o;

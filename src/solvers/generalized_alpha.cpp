@@ -191,6 +191,8 @@ void GeneralizedAlphaStepper::initialize(double t0, const VecX& q0, const VecX& 
   matrix_age_ = 0;
   eta_ = 1.0;
   steps_since_halving_ = 0;
+  recovery_wait_ = options_.recovery_steps;
+  steps_since_climb_ = -1;
   halvings_in_a_row_ = 0;
   stats_.min_step = h_;
   stats_.max_step = 0.0;
@@ -367,14 +369,18 @@ void GeneralizedAlphaStepper::step(double t_limit) {
       }
       last_error_ = err;
       accept(t1, h, on_base, last);
-      if (!adaptive() && h_ < options_.step_size &&
-          ++steps_since_halving_ >= options_.recovery_steps) {
+      if (steps_since_climb_ >= 0 && ++steps_since_climb_ > recovery_wait_) {
+        recovery_wait_ = options_.recovery_steps;  // the climb held
+        steps_since_climb_ = -1;
+      }
+      if (!adaptive() && h_ < options_.step_size && ++steps_since_halving_ >= recovery_wait_) {
         // Back up the ladder step_size·2⁻ᵏ (the largest rung ≤ 2h_): a halving of a shortened
         // step leaves h_ off the ladder, and doubling it would keep it off (and t off the grid).
         double rung = options_.step_size;
         while (rung > 2.0 * h_ * (1.0 + 1e-12)) rung *= 0.5;
         h_ = rung;
         steps_since_halving_ = 0;
+        steps_since_climb_ = 0;
       }
       break;
     }
@@ -407,6 +413,12 @@ void GeneralizedAlphaStepper::step(double t_limit) {
       h_ = 0.5 * h;
       steps_since_halving_ = 0;
       ++stats_.step_halvings;
+      // A climb that failed again at once: wait twice as long before the next one (the wait
+      // returns to recovery_steps once a climb holds, in the accept branch above).
+      if (options_.recovery_backoff && steps_since_climb_ >= 0 &&
+          steps_since_climb_ <= recovery_wait_)
+        recovery_wait_ = std::min(2 * recovery_wait_, options_.max_recovery_steps);
+      steps_since_climb_ = -1;
     }
     retried_stale = false;
     klu_.reset_pivoting();

@@ -47,6 +47,7 @@ struct IntegratorSettings {
   GeneralizedAlphaStepChange ga_step_change = GeneralizedAlphaStepChange::automatic;
   bool ga_refresh_on_contact_change = false;
   int ga_max_damping_halvings = 0;  ///< damped Newton (GeneralizedAlphaOptions), 0: off
+  bool ga_recovery_backoff = true;  ///< fixed stepping: wait doubling after failed climbs
   bool ga_klu_refactor = false;     ///< klu_l_refactor instead of the LU on the runs (KluRefactor)
   bool ga_filter_error_estimate = true;  ///< filtered local error estimate
   double ga_max_reuse_rate = 0.1;  ///< modified Newton's reuse threshold (GeneralizedAlphaOptions)

@@ -146,6 +146,14 @@ struct GeneralizedAlphaOptions {
   /// doubled again (towards step_size). Every change of h restarts the scheme (see step()).
   int max_step_halvings = 12;
   int recovery_steps = 4;
+  /// Fixed stepping: when the step right after climbing back to a larger h fails again (within
+  /// the wait that preceded the climb), the next wait is doubled, up to max_recovery_steps; a
+  /// failure later, or a climb that holds, returns it to recovery_steps. A cascade of
+  /// fail–halve–climb–fail (each climb restarts the scheme and re-excites the modes that made
+  /// the step fail: 1 719 failures in 1 s of the 1000-element benchmark pendulum) then costs a
+  /// few failures. false: climb after recovery_steps always (3e3daf4 … issue 20, third session).
+  bool recovery_backoff = true;
+  int max_recovery_steps = 256;
 
   GeneralizedAlphaStepping stepping = GeneralizedAlphaStepping::fixed;
   /// Error-controlled stepping: tolerances of the local position error [m] and step limits;
@@ -312,6 +320,8 @@ class GeneralizedAlphaStepper {
   bool matrix_stale_ = true;  // refresh before the next iteration
   double eta_ = 1.0;          // θ/(1 − θ) estimate carried across steps
   int steps_since_halving_ = 0;
+  int recovery_wait_ = 4;       // accepted steps at a reduced h before climbing (fixed stepping)
+  int steps_since_climb_ = -1;  // accepted steps since the last climb, −1: none since a halving
   int halvings_in_a_row_ = 0;
   double step_max_rate_ = 0.0;          // largest contraction rate θ seen in the current step
   StepController controller_;           // error-controlled stepping
