@@ -37,6 +37,7 @@
 #include "ancf/scenes/pendulums.hpp"
 #include "ancf/solvers/generalized_alpha.hpp"
 #include "ancf/system/multibody_problem.hpp"
+#include "option_value.hpp"
 
 namespace {
 
@@ -138,13 +139,7 @@ int main(int argc, char** argv) {
   Kernels kernels;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    auto value = [&]() -> const char* {
-      if (i + 1 >= argc) {
-        std::fprintf(stderr, "%s needs a value\n", arg.c_str());
-        std::exit(2);
-      }
-      return argv[++i];
-    };
+    auto value = [&] { return ancf::studies::option_value(argc, argv, i); };
     if (arg == "--elements")
       elements = std::stol(value());
     else if (arg == "--step")

@@ -27,6 +27,7 @@
 #include "ancf/scenes/pendulums.hpp"
 #include "ancf/solvers/ida_integrator.hpp"
 #include "ancf/system/ggl_problem.hpp"
+#include "option_value.hpp"
 
 namespace {
 
@@ -71,13 +72,7 @@ int main(int argc, char** argv) {
   options.output_times = kOutputTimes;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    auto value = [&]() -> const char* {
-      if (i + 1 >= argc) {
-        std::fprintf(stderr, "%s needs a value\n", arg.c_str());
-        std::exit(2);
-      }
-      return argv[++i];
-    };
+    auto value = [&] { return ancf::studies::option_value(argc, argv, i); };
     if (arg == "--elements")
       elements = std::stol(value());
     else if (arg == "--order")

@@ -18,6 +18,12 @@ namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
+// ∞-norm condition number ‖A‖∞ ‖A⁻¹‖∞ of `dense`, with its LU.
+double infinity_condition(const Eigen::PartialPivLU<MatX>& lu, const MatX& dense) {
+  return lu.inverse().cwiseAbs().rowwise().sum().maxCoeff() *
+         dense.cwiseAbs().rowwise().sum().maxCoeff();
+}
+
 TEST(GaussLegendre, IntegratesMonomialsUpToDegree2nMinus1Exactly) {
   for (int n = 1; n <= 8; ++n) {
     const GaussRule rule = gauss_legendre_unit(n);
@@ -202,8 +208,7 @@ TEST(KluSolver, ExtractedSolveEqualsKlusOwnSolveOnANodeChain) {
     runs.factor(as_span(values));
     reciprocal.factor(as_span(values));
     const Eigen::PartialPivLU<MatX> lu(dense);
-    const double cond = lu.inverse().cwiseAbs().rowwise().sum().maxCoeff() *
-                        dense.cwiseAbs().rowwise().sum().maxCoeff();
+    const double cond = infinity_condition(lu, dense);
     for (int rhs = 0; rhs < 3; ++rhs) {
       VecX b = VecX::NullaryExpr(n, [&] { return u(rng); }), x = b, y = b;
       const VecX expected = lu.solve(b);
@@ -267,8 +272,7 @@ TEST(KluSolver, RunsRefactorizationAgreesWithKlus) {
     klu.factor(as_span(values));
     runs.factor(as_span(values));
     const Eigen::PartialPivLU<MatX> lu(dense);
-    const double cond = lu.inverse().cwiseAbs().rowwise().sum().maxCoeff() *
-                        dense.cwiseAbs().rowwise().sum().maxCoeff();
+    const double cond = infinity_condition(lu, dense);
     for (int rhs = 0; rhs < 2; ++rhs) {
       VecX b = VecX::NullaryExpr(n, [&] { return u(rng); }), x = b;
       const VecX expected = lu.solve(b);

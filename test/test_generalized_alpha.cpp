@@ -473,12 +473,9 @@ TEST(GeneralizedAlpha, ModifiedNewtonAgreesWithFullNewton) {
   }
 }
 
-// Newton limited to 2 iterations (rtol 1e-8) fails at h = 0.04 on the rigid pendulum:
-// the stepper halves the step, continues from the last accepted state, doubles it again after
-// `recovery_steps` accepted steps, and still lands exactly on the output times. The rescaling of
-// a on each change of h keeps λ second order: its sup error stays at the level of the smaller
-// steps' (no O(h) transient per change).
-TEST(GeneralizedAlpha, StepHalvingAndRecovery) {
+// The rigid pendulum at h = 0.04 with Newton limited to two iterations at rtol 1e-8: the step
+// fails and is halved (StepHalvingAndRecovery, RecoveryBackoffAfterAClimbThatFailsAtOnce).
+GeneralizedAlphaOptions newton_limited_options() {
   GeneralizedAlphaOptions o = tight(0.04, 0.8);
   o.start = GeneralizedAlphaStart::perturbed;
   o.rtol = 1e-8;
@@ -486,6 +483,16 @@ TEST(GeneralizedAlpha, StepHalvingAndRecovery) {
   o.atol_velocity = 1e-8;
   o.atol_multiplier = 1e-8;
   o.max_iterations = 2;
+  return o;
+}
+
+// Newton limited to 2 iterations (rtol 1e-8) fails at h = 0.04 on the rigid pendulum:
+// the stepper halves the step, continues from the last accepted state, doubles it again after
+// `recovery_steps` accepted steps, and still lands exactly on the output times. The rescaling of
+// a on each change of h keeps λ second order: its sup error stays at the level of the smaller
+// steps' (no O(h) transient per change).
+TEST(GeneralizedAlpha, StepHalvingAndRecovery) {
+  GeneralizedAlphaOptions o = newton_limited_options();
   const GridErrors e = rigid_pendulum_errors(o, 0.25, 2.0);
   std::printf(
       "halving run: %ld steps, %ld halvings, %ld failures, min step %.4f, final step %.4f; sup "
@@ -524,13 +531,7 @@ TEST(GeneralizedAlpha, StepHalvingAndRecovery) {
 // fail–halve–climb–fail costs fewer failures; the accuracy is at least that of climbing after
 // recovery_steps always, since more of the steps are the smaller ones.
 TEST(GeneralizedAlpha, RecoveryBackoffAfterAClimbThatFailsAtOnce) {
-  GeneralizedAlphaOptions o = tight(0.04, 0.8);
-  o.start = GeneralizedAlphaStart::perturbed;
-  o.rtol = 1e-8;
-  o.atol_position = 1e-10;
-  o.atol_velocity = 1e-8;
-  o.atol_multiplier = 1e-8;
-  o.max_iterations = 2;
+  GeneralizedAlphaOptions o = newton_limited_options();
   const GridErrors backoff = rigid_pendulum_errors(o, 0.25, 6.0);
   o.recovery_backoff = false;
   const GridErrors always = rigid_pendulum_errors(o, 0.25, 6.0);

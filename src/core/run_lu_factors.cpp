@@ -91,7 +91,7 @@ bool RunLuFactors::load(klu_l_numeric* numeric, klu_l_symbolic* symbolic, klu_l_
   fit(ux_, unz);
   fit(fi_, fnz);
   fit(fx_, fnz);
-  for (auto* v : {&scale_, &diagonal_, &unit_diagonal_, &work_}) fit(*v, n);
+  for (auto* v : {&scale_, &diagonal_, &inverse_diagonal_, &unit_diagonal_, &work_}) fit(*v, n);
   if (klu_l_extract(numeric, symbolic, klu_ptr(lp_), klu_ptr(li_), lx_.data(), klu_ptr(up_),
                     klu_ptr(ui_), ux_.data(), klu_ptr(fp_), klu_ptr(fi_), fx_.data(),
                     klu_ptr(perm_row_), klu_ptr(perm_col_), scale_.data(), klu_ptr(block_start_),
@@ -109,7 +109,6 @@ bool RunLuFactors::load(klu_l_numeric* numeric, klu_l_symbolic* symbolic, klu_l_
   l_.fill(lx_, unit_diagonal_);
   u_.fill(ux_, diagonal_);
   f_.fill(fx_, unit_diagonal_);  // F has no diagonal entries
-  fit(inverse_diagonal_, static_cast<std::size_t>(n_));
   for (Index j = 0; j < n_; ++j) inverse_diagonal_[j] = 1.0 / diagonal_[j];
   return true;
 }
@@ -223,13 +222,13 @@ RunLuFactors::PivotQuality RunLuFactors::refactor(const Index* ap, const Index* 
     x[j] = 0.0;
     if (!(std::abs(pivot) > 0.0) || !std::isfinite(pivot)) return {0.0, 0.0};
     diagonal_[j] = pivot;
-    inverse_diagonal_[j] = 1.0 / pivot;
     largest_u = std::max(largest_u, std::abs(pivot));
     smallest_pivot = std::min(smallest_pivot, std::abs(pivot));
     largest_pivot = std::max(largest_pivot, std::abs(pivot));
     if (largest_a > 0.0) quality.growth = std::min(quality.growth, largest_a / largest_u);
     // L(:, j) = x / u_jj on its pattern.
     const double inverse = 1.0 / pivot;
+    inverse_diagonal_[j] = inverse;
     for (Index q = l_.col_runs[j]; q < l_.col_runs[j + 1]; ++q) {
       double* l = l_.value.data() + l_.offset[q];
       double* xs = x + l_.first[q];

@@ -415,8 +415,8 @@ void GeneralizedAlphaStepper::step(double t_limit) {
       ++stats_.step_halvings;
       // A climb that failed again at once: wait twice as long before the next one (the wait
       // returns to recovery_steps once a climb holds, in the accept branch above).
-      if (options_.recovery_backoff && steps_since_climb_ >= 0 &&
-          steps_since_climb_ <= recovery_wait_)
+      // (steps_since_climb_ ≥ 0 only within the wait after a climb: accept resets it past that.)
+      if (options_.recovery_backoff && steps_since_climb_ >= 0)
         recovery_wait_ = std::min(2 * recovery_wait_, options_.max_recovery_steps);
       steps_since_climb_ = -1;
     }

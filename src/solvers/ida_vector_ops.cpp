@@ -54,8 +54,8 @@ Sum classify(Real a, Real b, bool z_is_y, bool z_is_x) {
   return Sum::general;
 }
 
-// Vaxpy_Serial: y ← a x + y with a = ±1 as additions.
-void axpy(Real a, const Real* __restrict x, Real* __restrict y, Size n) {
+// Vaxpy_Serial: y ← a x + y with a = ±1 as additions (x may be y: no __restrict).
+void axpy(Real a, const Real* x, Real* y, Size n) {
   if (a == 1.0)
     for (Size i = 0; i < n; ++i) y[i] += x[i];
   else if (a == -1.0)
