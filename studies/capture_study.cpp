@@ -7,7 +7,7 @@
 //                     [--bending EI] [--bending-damping CB] [--mass-damping ALPHA] [--no-rope-rope] [--index2] [--free-pole]
 //                     [--contact-pattern near|all] [--set KEY=VALUE ...] [--out DIR]
 //                     [--error-control] [--error-rtol R] [--error-atol A] [--h-min H] [--h-max H]
-//                     [--step-change automatic|restart|rescale|rescale_with_velocity] [--refresh-on-contact] [--newton-damping N]
+//                     [--step-change automatic|restart|rescale|rescale_with_velocity|rescale_climbs] [--refresh-on-contact] [--newton-damping N]
 //                     [--fast]
 // --set sets any key of the scene's [integrator] table by its dotted path below it, e.g.
 // --set genalpha.step=5e-4 or --set ida.max_order=2 (VALUE is a TOML value: number, "string", true).

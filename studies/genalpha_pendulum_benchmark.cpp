@@ -21,6 +21,7 @@
 //                            [--steady-clock]    (time shares read steady_clock, not the TSC)
 //                            [--rescale-at-halvings] (fixed stepping rescales a at a change of h
 //                                                instead of restarting; not the default)
+//                            [--restart-climbs]  (restart also at a climb back: 3e3daf4's fixed-step policy)
 //                            [--no-recovery-backoff] (climb back after recovery_steps always)
 //                            [--klu-refactor]    (klu_l_refactor instead of the LU on the runs)
 #include <fmt/format.h>
@@ -134,7 +135,8 @@ int main(int argc, char** argv) {
   bool extrapolate = false;
   int runs = 9;
   bool reference = true, profile = false, pivot_growth = false, klu_solve = false,
-       divide_pivots = false, rescale_at_halvings = false, recovery_backoff = true,
+       divide_pivots = false, rescale_at_halvings = false, restart_climbs = false,
+       recovery_backoff = true,
        klu_refactor = false;
   Kernels kernels;
   for (int i = 1; i < argc; ++i) {
@@ -168,6 +170,8 @@ int main(int argc, char** argv) {
       recovery_backoff = false;
     else if (arg == "--rescale-at-halvings")
       rescale_at_halvings = true;
+    else if (arg == "--restart-climbs")
+      restart_climbs = true;
     else if (arg == "--steady-clock")
       ancf::TickClock::use_steady_clock(true);
     else if (arg == "--klu-refactor")
@@ -182,7 +186,8 @@ int main(int argc, char** argv) {
           "usage: %s [--elements N] [--step H] [--rho R] [--runs K] [--rtol TOL] "
           "[--reuse-rate R] [--extrapolate] [--no-reference] [--profile] [--pivot-growth] "
           "[--pointwise-force] [--pointwise-stiffness] [--klu-solve] [--divide-pivots] "
-          "[--steady-clock] [--rescale-at-halvings] [--no-recovery-backoff] [--klu-refactor]\n",
+          "[--steady-clock] [--rescale-at-halvings] [--restart-climbs] [--no-recovery-backoff] "
+          "[--klu-refactor]\n",
           argv[0]);
       return 2;
     }
@@ -203,6 +208,7 @@ int main(int argc, char** argv) {
   if (pivot_growth) fast.refactor_check = ancf::RefactorCheck::pivot_growth;
   if (divide_pivots) fast.klu_solve = ancf::KluSolve::extracted;
   if (rescale_at_halvings) fast.step_change = ancf::GeneralizedAlphaStepChange::rescale;
+  if (restart_climbs) fast.step_change = ancf::GeneralizedAlphaStepChange::restart;
   fast.recovery_backoff = recovery_backoff;
   if (klu_solve) fast.klu_solve = ancf::KluSolve::klu;
   if (klu_refactor) fast.klu_refactor = ancf::KluRefactor::klu;

@@ -546,9 +546,38 @@ TEST(GeneralizedAlpha, RecoveryBackoffAfterAClimbThatFailsAtOnce) {
   EXPECT_LE(backoff.q, always.q * (1.0 + 1e-9));
 }
 
+// Fixed stepping restarts where h falls and rescales where it climbs back (step_change =
+// automatic, i.e. rescale_climbs; docs/time_step_control.md "Recovery after halvings"): in the
+// halving run of StepHalvingAndRecovery every restart after the initial one is a halving, and
+// climbs happen. step_change = restart restarts at every change of h. q keeps the accuracy of
+// the run that restarts everywhere; λ carries the rescale's O(h) transient after each climb
+// (docs/time_step_control.md, table of orders) and stays below the error of never halving.
+TEST(GeneralizedAlpha, FixedSteppingRestartsAtHalvingsAndRescalesClimbs) {
+  GeneralizedAlphaOptions o = newton_limited_options();
+  o.recovery_backoff = false;  // climb after recovery_steps always: many climbs
+  const GridErrors climbs = rigid_pendulum_errors(o, 0.25, 2.0);
+  o.step_change = GeneralizedAlphaStepChange::restart;
+  const GridErrors restarts = rigid_pendulum_errors(o, 0.25, 2.0);
+  std::printf("rescaled climbs: %ld halvings, %ld changes of h, %ld restarts, q %.3e lambda %.3e; "
+              "restart always: %ld halvings, %ld changes, %ld restarts, q %.3e lambda %.3e\n",
+              climbs.stats.step_halvings, climbs.stats.step_size_changes, climbs.stats.restarts,
+              climbs.q, climbs.lambda, restarts.stats.step_halvings,
+              restarts.stats.step_size_changes, restarts.stats.restarts, restarts.q,
+              restarts.lambda);
+  EXPECT_GT(climbs.stats.step_halvings, 2);
+  EXPECT_EQ(climbs.stats.restarts, 1 + climbs.stats.step_halvings);
+  EXPECT_GT(climbs.stats.step_size_changes, climbs.stats.step_halvings);
+  EXPECT_EQ(restarts.stats.restarts, 1 + restarts.stats.step_size_changes);
+  GeneralizedAlphaOptions fixed = tight(0.04, 0.8);
+  fixed.start = GeneralizedAlphaStart::perturbed;
+  const GridErrors never_halved = rigid_pendulum_errors(fixed, 0.25, 2.0);
+  EXPECT_LT(std::abs(climbs.q - restarts.q), 0.1 * restarts.q);
+  EXPECT_LT(climbs.lambda, never_halved.lambda);
+}
+
 // Output times off the step grid (every 2.5 h: steps h, h, h/2, …) force a shorter step before
-// each output and a longer one after it; each change of h restarts the scheme (see
-// GeneralizedAlphaStepper::change_step_size). The sup errors over the outputs in [0.25, 1.25] s
+// each output and a longer one after it; each shortening restarts the scheme and each return to
+// h rescales it (see GeneralizedAlphaStepper::change_step_size). The sup errors over the outputs in [0.25, 1.25] s
 // must stay second order in q, v and λ.
 TEST(GeneralizedAlpha, OutputTimesOffTheStepGridKeepSecondOrder) {
   const RigidPendulumSpec spec;

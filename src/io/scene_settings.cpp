@@ -60,12 +60,14 @@ IntegratorSettings read_integrator(TableReader& root) {
     if (s.ga_max_reuse_rate >= 1.0)
       ga->fail("max_reuse_rate", "expected a contraction rate in (0, 1)");
     const std::string change = ga->choice(
-        "step_change", {"automatic", "restart", "rescale", "rescale_with_velocity"}, "automatic");
+        "step_change", {"automatic", "restart", "rescale", "rescale_with_velocity", "rescale_climbs"},
+        "automatic");
     s.ga_step_change = change == "restart"   ? GeneralizedAlphaStepChange::restart
                        : change == "rescale" ? GeneralizedAlphaStepChange::rescale
                        : change == "rescale_with_velocity"
                            ? GeneralizedAlphaStepChange::rescale_with_velocity
-                           : GeneralizedAlphaStepChange::automatic;
+                       : change == "rescale_climbs" ? GeneralizedAlphaStepChange::rescale_climbs
+                                                    : GeneralizedAlphaStepChange::automatic;
     s.ga_refresh_on_contact_change =
         ga->boolean_or("refresh_on_contact_change", s.ga_refresh_on_contact_change);
     s.ga_filter_error_estimate = ga->boolean_or("error_filter", s.ga_filter_error_estimate);

@@ -92,9 +92,17 @@ void GeneralizedAlphaStepper::change_step_size(double h_new) {
   // h-dependent parts instead (rescale): no O(h) λ transient and no index-1 solve per change.
   if (h_new == a_h_) return;
   ++stats_.step_size_changes;
-  const bool rescaling = options_.step_change == GeneralizedAlphaStepChange::automatic
-                             ? adaptive()
-                             : options_.step_change != GeneralizedAlphaStepChange::restart;
+  // rescale_climbs: a climb back after a halving is one bounded ratio (2) after accepted steps,
+  // which is what the rescale is safe for; restarting there re-excites the modes that made the
+  // step fail (docs/time_step_control.md, "Recovery after halvings").
+  bool rescaling = false;
+  switch (options_.step_change) {
+    case GeneralizedAlphaStepChange::automatic: rescaling = adaptive() || h_new > a_h_; break;
+    case GeneralizedAlphaStepChange::restart: rescaling = false; break;
+    case GeneralizedAlphaStepChange::rescale_climbs: rescaling = h_new > a_h_; break;
+    case GeneralizedAlphaStepChange::rescale:
+    case GeneralizedAlphaStepChange::rescale_with_velocity: rescaling = true; break;
+  }
   if (rescaling)
     rescale(h_new);
   else

@@ -88,11 +88,12 @@ enum class GeneralizedAlphaStepping {
 /// What a change of h does to the h-dependent parts of the state (see step(),
 /// docs/time_step_control.md for the measurements behind the default).
 enum class GeneralizedAlphaStepChange {
-  automatic,  ///< restart for fixed stepping, rescale for error-controlled stepping
+  automatic,  ///< rescale_climbs for fixed stepping, rescale for error-controlled stepping
   restart,    ///< the starting procedure of initialize() at the accepted (t, q, v)
   rescale,    ///< a ← q'' + (h_new/h_old)(a − q''); λ keeps an O(h) transient per change
   rescale_with_velocity,  ///< rescale, and (index 3) the normal part of v: λ second order on
                           ///< smooth motion, but amplifies noise in a − q'' (stiff contact)
+  rescale_climbs,  ///< restart where h falls (a halving), rescale where it grows (a climb back)
 };
 enum class NewtonStrategy {
   full,      ///< new analytic iteration matrix and factorization at every iteration
@@ -143,15 +144,16 @@ struct GeneralizedAlphaOptions {
 
   /// On Newton failure (with a fresh matrix) the step is halved from the last accepted state, at
   /// most this many times in a row; after recovery_steps accepted steps at a reduced size it is
-  /// doubled again (towards step_size). Every change of h restarts the scheme (see step()).
+  /// doubled again (towards step_size). A halving restarts the scheme, a climb rescales it
+  /// (step_change = automatic; see change_step_size()).
   int max_step_halvings = 12;
   int recovery_steps = 4;
   /// Fixed stepping: when the step right after climbing back to a larger h fails again (within
   /// the wait that preceded the climb), the next wait is doubled, up to max_recovery_steps; a
   /// failure later, or a climb that holds, returns it to recovery_steps. A cascade of
-  /// fail–halve–climb–fail (each climb restarts the scheme and re-excites the modes that made
-  /// the step fail: 1 719 failures in 1 s of the 1000-element benchmark pendulum) then costs a
-  /// few failures. false: climb after recovery_steps always (3e3daf4 … issue 20, third session).
+  /// fail–halve–climb–fail (with step_change = restart each climb restarts the scheme and
+  /// re-excites the modes that made the step fail: 1 719 failures in 1 s of the 1000-element
+  /// benchmark pendulum) then costs a few failures. false: climb after recovery_steps always (3e3daf4 … issue 20, third session).
   bool recovery_backoff = true;
   int max_recovery_steps = 256;
 
