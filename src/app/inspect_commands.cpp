@@ -1,7 +1,10 @@
 // `ancf check` and `ancf info`: everything short of running a scene.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <limits>
+#include <string>
 
 #include "ancf/io/scene.hpp"
 #include "ancf/system/contact_pattern.hpp"
@@ -45,24 +48,34 @@ int info_command(const std::string& scene_path) {
           100.0 * static_cast<double>(every.pattern().nonzeros()) / dense);
     fmt::print("cables       {}\n", m.cables().size());
     for (const CableData& c : m.cables()) {
+      // A graded mesh (scene key `grading`) shows its shortest and longest element.
+      double shortest = std::numeric_limits<double>::infinity(), longest = 0.0;
+      for (const CableElementReference& e : c.elements) {
+        shortest = std::min(shortest, e.length);
+        longest = std::max(longest, e.length);
+      }
+      const std::string graded =
+          longest > shortest * (1.0 + 1e-9)
+              ? fmt::format("  graded: elements {:.3g} to {:.3g} mm", 1e3 * shortest, 1e3 * longest)
+              : std::string();
       if (c.rod) {
         const RodSection& r = c.rod->section;
         fmt::print(
             "  {:<18} {:>4} elements {:>4} nodes  Kirchhoff rod (twist coordinates {}..{}): EA "
             "{:.4g} N  GJ {:.4g} N m^2  EI2 {:.4g}  EI3 {:.4g} N m^2  rhoA {:.4g} kg/m  rhoJ "
-            "{:.4g} kg m  Gauss {}\n",
+            "{:.4g} kg m  Gauss {}{}\n",
             c.name, c.elements.size(), c.node_count, c.rod->twist_first,
             c.rod->twist_first + c.node_count - 1, r.axial_stiffness, r.torsional_stiffness,
             r.bending_stiffness_2, r.bending_stiffness_3, r.mass_per_length, r.polar_inertia,
-            kRodGaussPoints);
+            kRodGaussPoints, graded);
         continue;
       }
       fmt::print(
           "  {:<18} {:>4} elements {:>4} nodes  EA {:.4g} N  EI {:.4g} N m^2  rhoA {:.4g} kg/m  "
-          "Gauss {}/{}\n",
+          "Gauss {}/{}{}\n",
           c.name, c.elements.size(), c.node_count, c.section.axial_stiffness,
           c.section.bending_stiffness, c.section.mass_per_length, c.section.quadrature.axial,
-          c.section.quadrature.bending);
+          c.section.quadrature.bending, graded);
     }
     fmt::print("bodies       {}\n", m.bodies().size());
     for (const BodyData& b : m.bodies())

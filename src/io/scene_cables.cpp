@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 
 #include "ancf/io/run_limits.hpp"
+#include "ancf/system/mesh_grading.hpp"
 #include "scene_parts.hpp"
 #include "scene_velocity.hpp"
 
@@ -67,15 +68,19 @@ void require_perpendicular(TableReader& g, std::string_view key, const Vec3& a, 
 
 }  // namespace
 
-CableGeometry read_geometry(TableReader g, Index elements, GeometryAxis* axis_out) {
+CableGeometry read_geometry(TableReader g, Index elements, GeometryAxis* axis_out,
+                            std::span<const double> fractions) {
   const std::string kind = g.choice("kind", {"straight", "polyline", "helix", "arc"});
   CableGeometry geo;
   if (kind == "straight") {
     const Vec3 a = g.vec3("start"), b = g.vec3("end");
     if (!((b - a).norm() > 0.0))
       g.fail("end", "expected an end point different from start (zero length)");
-    geo = straight_cable(a, b, elements);
+    geo = straight_cable(a, b, elements, fractions);
   } else if (kind == "polyline") {
+    if (!fractions.empty())
+      g.fail("kind", "a graded mesh ('grading') needs a straight, helix or arc geometry, not a "
+                     "polyline (its elements follow the segments)");
     geo = polyline_cable(g, g.vec3_list("points", 2), elements);
   } else if (kind == "helix") {
     const Vec3 base = g.vec3_or("base", Vec3::Zero());
@@ -89,7 +94,7 @@ CableGeometry read_geometry(TableReader g, Index elements, GeometryAxis* axis_ou
                  rise = g.number("rise");
     if (!(std::hypot(radius * twist, rise) > 0.0))
       g.fail("twist", "expected twist or rise non-zero (zero length)");
-    geo = helix_cable(base, axis, u, radius, phi0, twist, rise, elements);
+    geo = helix_cable(base, axis, u, radius, phi0, twist, rise, elements, fractions);
     if (axis_out) *axis_out = {true, base, axis};
   } else {
     const Vec3 centre = g.vec3_or("centre", Vec3::Zero());
@@ -97,11 +102,37 @@ CableGeometry read_geometry(TableReader g, Index elements, GeometryAxis* axis_ou
     require_perpendicular(g, "w", w, u, "u");
     const double radius = g.number("radius", Range::positive), angle = g.number("angle");
     if (angle == 0.0) g.fail("angle", "expected a non-zero angle [rad] (zero length)");
-    geo = arc_cable(centre, u, w, radius, angle, elements);
+    geo = arc_cable(centre, u, w, radius, angle, elements, fractions);
     if (axis_out) *axis_out = {true, centre, u.cross(w)};
   }
   g.finish();
   return geo;
+}
+
+CableMesh read_cable_mesh(TableReader& t, Index elements) {
+  CableMesh mesh;
+  std::vector<double> fractions;
+  if (auto gr = t.optional_table("grading")) {
+    MeshGrading grading;
+    grading.end_ratio = gr->number("end_ratio", Range::positive);
+    if (grading.end_ratio > 1.0)
+      gr->fail("end_ratio", "expected the end elements' length over the others', in (0, 1]");
+    grading.end_length = gr->number("end_length", Range::positive);
+    const std::string ends = gr->choice("ends", {"both", "start", "end"}, "both");
+    grading.at_start = ends != "end";
+    grading.at_end = ends != "start";
+    gr->finish();
+    const CableGeometry uniform = read_geometry(t.table("geometry"), elements);
+    double length = 0.0;
+    for (double l : uniform.element_lengths) length += l;
+    fractions = node_fractions(elements, length, grading);
+  }
+  mesh.initial = read_geometry(t.table("geometry"), elements, &mesh.axis, fractions);
+  mesh.reference_axis = mesh.axis;
+  mesh.reference = t.has("reference") ? read_geometry(t.table("reference"), elements,
+                                                      &mesh.reference_axis, fractions)
+                                      : mesh.initial;
+  return mesh;
 }
 
 namespace {
@@ -185,9 +216,9 @@ void read_cables(TableReader& root, SceneBuild& b) {
     } catch (const ModelError& e) {
       t.fail("elements", e.what());
     }
-    const CableGeometry initial = read_geometry(t.table("geometry"), elements);
-    const CableGeometry reference =
-        t.has("reference") ? read_geometry(t.table("reference"), elements) : initial;
+    const CableMesh mesh = read_cable_mesh(t, elements);
+    const CableGeometry& initial = mesh.initial;
+    const CableGeometry& reference = mesh.reference;
     const CableSection section = read_section(t.table("section"));
     const auto velocities = read_cable_velocities(t, initial);
     t.finish();

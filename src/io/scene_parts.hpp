@@ -3,6 +3,7 @@
 #pragma once
 
 #include <map>
+#include <span>
 #include <string>
 
 #include "ancf/io/scene.hpp"
@@ -76,9 +77,19 @@ struct GeometryAxis {
   bool valid = false;
   Vec3 point = Vec3::Zero(), direction = Vec3::UnitZ();
 };
-/// A `geometry`/`reference` table (docs/scenes.md) with `elements` elements; `axis` (optional)
-/// receives the axis of a helix or arc.
-CableGeometry read_geometry(TableReader g, Index elements, GeometryAxis* axis = nullptr);
+/// A `geometry`/`reference` table (docs/scenes.md) with `elements` elements at the arc-length
+/// node fractions `fractions` (empty: equal elements); `axis` (optional) receives the axis of a
+/// helix or arc.
+CableGeometry read_geometry(TableReader g, Index elements, GeometryAxis* axis = nullptr,
+                            std::span<const double> fractions = {});
+/// The mesh of a [[cable]] or [[rod]] table: `geometry`, the optional `reference` (else the
+/// geometry) and the optional `grading` (mesh_grading.hpp), whose node fractions are taken along
+/// the geometry and used for both, so that a graded reference and its initial shape share nodes.
+struct CableMesh {
+  CableGeometry initial, reference;
+  GeometryAxis axis, reference_axis;  ///< of the geometry and of the reference (helix, arc)
+};
+CableMesh read_cable_mesh(TableReader& t, Index elements);
 void read_cables(TableReader& root, SceneBuild& b);
 /// [[rod]]: Kirchhoff rods (scene_rods.cpp).
 void read_rods(TableReader& root, SceneBuild& b);

@@ -109,11 +109,10 @@ void read_rods(TableReader& root, SceneBuild& b) {
     } catch (const ModelError& e) {
       t.fail("elements", e.what());
     }
-    GeometryAxis axis;
-    const CableGeometry initial = read_geometry(t.table("geometry"), elements, &axis);
-    GeometryAxis ref_axis = axis;
-    const CableGeometry reference =
-        t.has("reference") ? read_geometry(t.table("reference"), elements, &ref_axis) : initial;
+    const CableMesh mesh = read_cable_mesh(t, elements);
+    const CableGeometry& initial = mesh.initial;
+    const CableGeometry& reference = mesh.reference;
+    const GeometryAxis& ref_axis = mesh.reference_axis;
     // Reference material frame: d₂ along `normal` (⊥ tangent part), or towards the axis of a
     // helix/arc reference.
     std::vector<Mat3> frames;

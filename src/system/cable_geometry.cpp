@@ -19,44 +19,77 @@ void require_elements(Index n, const char* what) {
   if (n < 1)
     throw ModelError(std::string(what) + ": element count must be >= 1, got " + std::to_string(n));
 }
+
+/// Node fractions along the arc length: given ones, or k/n (equal elements, bit for bit as before
+/// graded meshes existed).
+class Fractions {
+ public:
+  Fractions(Index n, std::span<const double> given, const char* what) : n_(n), given_(given) {
+    require_elements(n, what);
+    if (given.empty()) return;
+    if (given.size() != static_cast<std::size_t>(n) + 1 || given.front() != 0.0 ||
+        given.back() != 1.0)
+      throw ModelError(std::string(what) + ": expected n + 1 node fractions from 0 to 1");
+    for (Index k = 0; k < n; ++k)
+      if (!(given[k + 1] > given[k]))
+        throw ModelError(std::string(what) + ": node fractions must increase");
+  }
+  [[nodiscard]] double at(Index k) const {
+    return given_.empty() ? static_cast<double>(k) / n_ : given_[k];
+  }
+  void set_lengths(CableGeometry& g, double length) const {
+    if (given_.empty()) {
+      g.element_lengths.assign(n_, length / n_);
+      return;
+    }
+    g.element_lengths.resize(n_);
+    for (Index k = 0; k < n_; ++k) g.element_lengths[k] = length * (given_[k + 1] - given_[k]);
+  }
+
+ private:
+  Index n_;
+  std::span<const double> given_;
+};
 }  // namespace
 
-CableGeometry straight_cable(const Vec3& start, const Vec3& end, Index elements) {
-  require_elements(elements, "straight_cable");
+CableGeometry straight_cable(const Vec3& start, const Vec3& end, Index elements,
+                             std::span<const double> fractions) {
+  const Fractions f(elements, fractions, "straight_cable");
   const double length = (end - start).norm();
   if (!(length > 0.0)) throw ModelError("straight_cable: start and end coincide (zero length)");
   const Vec3 t = (end - start) / length;
   CableGeometry g;
   for (Index k = 0; k <= elements; ++k) {
     NodeCoordinates n;
-    n << start + (static_cast<double>(k) / elements) * (end - start), t;
+    n << start + f.at(k) * (end - start), t;
     g.nodes.push_back(n);
   }
-  g.element_lengths.assign(elements, length / elements);
+  f.set_lengths(g, length);
   return g;
 }
 
 CableGeometry arc_cable(const Vec3& centre, const Vec3& u, const Vec3& w, double radius,
-                        double angle, Index elements) {
-  require_elements(elements, "arc_cable");
+                        double angle, Index elements, std::span<const double> fractions) {
+  const Fractions f(elements, fractions, "arc_cable");
   if (!(radius > 0.0) || !(std::abs(angle) > 0.0))
     throw ModelError("arc_cable: radius and angle must be non-zero");
   const Vec3 e1 = u.normalized(), e2 = (w - w.dot(e1) * e1).normalized();
   CableGeometry g;
   for (Index k = 0; k <= elements; ++k) {
-    const double phi = angle * static_cast<double>(k) / elements;
+    const double phi = angle * f.at(k);
     NodeCoordinates n;
     n << centre + radius * (std::cos(phi) * e1 + std::sin(phi) * e2),
         -std::sin(phi) * e1 + std::cos(phi) * e2;
     g.nodes.push_back(n);
   }
-  g.element_lengths.assign(elements, radius * std::abs(angle) / elements);
+  f.set_lengths(g, radius * std::abs(angle));
   return g;
 }
 
 CableGeometry helix_cable(const Vec3& base, const Vec3& axis, const Vec3& u, double radius,
-                          double phi0, double twist, double rise, Index elements) {
-  require_elements(elements, "helix_cable");
+                          double phi0, double twist, double rise, Index elements,
+                          std::span<const double> fractions) {
+  const Fractions f(elements, fractions, "helix_cable");
   const Vec3 ez = axis.normalized();
   const Vec3 ex = (u - u.dot(ez) * ez).normalized();
   const Vec3 ey = ez.cross(ex);
@@ -64,7 +97,7 @@ CableGeometry helix_cable(const Vec3& base, const Vec3& axis, const Vec3& u, dou
   if (!(radius > 0.0) || !(length > 0.0)) throw ModelError("helix_cable: zero radius or length");
   CableGeometry g;
   for (Index k = 0; k <= elements; ++k) {
-    const double s = static_cast<double>(k) / elements;
+    const double s = f.at(k);
     const double phi = phi0 + twist * s;
     NodeCoordinates n;
     const Vec3 r = base + radius * (std::cos(phi) * ex + std::sin(phi) * ey) + rise * s * ez;
@@ -72,7 +105,7 @@ CableGeometry helix_cable(const Vec3& base, const Vec3& axis, const Vec3& u, dou
     n << r, dr / length;
     g.nodes.push_back(n);
   }
-  g.element_lengths.assign(elements, length / elements);
+  f.set_lengths(g, length);
   return g;
 }
 

@@ -1,6 +1,7 @@
 // Nodal coordinates of a cable: generators for common stress-free reference shapes.
 #pragma once
 
+#include <span>
 #include <vector>
 
 #include "ancf/core/types.hpp"
@@ -22,20 +23,25 @@ struct CableGeometry {
   [[nodiscard]] Vec12 element_coordinates(Index j) const;
 };
 
-/// Straight cable from `start` to `end` with n ≥ 1 equal elements, slopes = unit direction.
-[[nodiscard]] CableGeometry straight_cable(const Vec3& start, const Vec3& end, Index elements);
+// The generators below place node k at arc-length fraction `fractions[k]` (n + 1 increasing
+// values from 0 to 1, e.g. from node_fractions() in mesh_grading.hpp); empty: equal elements.
+
+/// Straight cable from `start` to `end` with n ≥ 1 elements, slopes = unit direction.
+[[nodiscard]] CableGeometry straight_cable(const Vec3& start, const Vec3& end, Index elements,
+                                           std::span<const double> fractions = {});
 
 /// Circular arc of radius R > 0 about `centre` in the plane spanned by unit vectors u (towards the
 /// start point) and w (direction of travel at the start), from angle 0 to `angle` [rad].
 [[nodiscard]] CableGeometry arc_cable(const Vec3& centre, const Vec3& u, const Vec3& w,
-                                      double radius, double angle, Index elements);
+                                      double radius, double angle, Index elements,
+                                      std::span<const double> fractions = {});
 
 /// Helix about the axis through `base` along unit `axis`, radius R, starting at polar angle phi0
 /// (measured from unit `u` ⊥ axis towards axis × u), turning by `twist` [rad] while rising `rise`
 /// [m].
 [[nodiscard]] CableGeometry helix_cable(const Vec3& base, const Vec3& axis, const Vec3& u,
                                         double radius, double phi0, double twist, double rise,
-                                        Index elements);
+                                        Index elements, std::span<const double> fractions = {});
 
 /// Reference material triads of a rod (kirchhoff_rod_element.hpp), one per node:
 /// [t̂, d₂, d₃] with d₂ the unit part of `normal` orthogonal to the node's tangent t̂ and
