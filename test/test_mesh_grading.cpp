@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 #include <vector>
 
@@ -28,8 +29,12 @@ TEST(MeshGrading, UniformIsExactlyKOverN) {
   const CableGeometry b = helix_cable(Vec3::Zero(), Vec3::UnitZ(), Vec3::UnitX(), 0.1, 0.3, 2.0,
                                       0.15, 7, f);
   for (Index k = 0; k <= 7; ++k) EXPECT_EQ(a.nodes[k], b.nodes[k]);
-  // Given fractions, a length is L(f_{k+1} − f_k): L/n to round-off.
-  for (Index k = 0; k < 7; ++k) EXPECT_NEAR(a.element_lengths[k], b.element_lengths[k], 1e-17);
+  // Given fractions, a length is L(f_{k+1} − f_k): L/n to the round-off of two fractions ≤ 1
+  // (half an ulp of 1 each) and the product, i.e. within 4 ε L.
+  const double length = std::hypot(0.1 * 2.0, 0.15);
+  for (Index k = 0; k < 7; ++k)
+    EXPECT_NEAR(a.element_lengths[k], b.element_lengths[k],
+                4.0 * std::numeric_limits<double>::epsilon() * length);
 }
 
 TEST(MeshGrading, RefinementIsNestedAndEndsAreGraded) {
