@@ -31,9 +31,12 @@ def main():
     until = a.until if a.until is not None else ref_run["events"].get("lock")
     if until is None:
         raise SystemExit(f"{a.dirs[-1]}: no lock in events.json; give --until")
-    keys = ["first_contact_rope_1", "first_contact_rope_2", "first_contact_rope_3", "all_three",
-            "lock", "ring_angle_at_stall_deg", "tension_at_lock_1", "tension_at_lock_2",
-            "tension_at_lock_3", "final_tilt_deg"]
+    # event key -> format of its cell: times [s] to the 0.01 s output grid and beyond, angles, forces
+    formats = {"first_contact_rope_1": ".3f", "first_contact_rope_2": ".3f",
+               "first_contact_rope_3": ".3f", "all_three": ".3f", "lock": ".3f",
+               "ring_angle_at_stall_deg": ".2f", "tension_at_lock_1": ".2f",
+               "tension_at_lock_2": ".2f", "tension_at_lock_3": ".2f", "final_tilt_deg": ".4g"}
+    keys = list(formats)
     print("| run | gap max diff [mm] (at t) | tilt max diff [deg] (at t) | " +
           " | ".join(keys) + " | steps | wall [s] |")
     print("|" + "---|" * (len(keys) + 5))
@@ -55,10 +58,7 @@ def main():
             if dt > tilt:
                 tilt, tilt_t = dt, t
         ev = run["events"]
-        cells = []
-        for k in keys:
-            v = ev.get(k)
-            cells.append("-" if v is None else (f"{v:.4g}" if "tilt" in k else f"{v:.2f}" if "tension" in k else f"{v:.3f}" if "deg" not in k else f"{v:.2f}"))
+        cells = ["-" if ev.get(k) is None else format(ev[k], formats[k]) for k in keys]
         print(f"| {d} | {gap:.3f} ({gap_t}) | {tilt:.4f} ({tilt_t}) | " + " | ".join(cells) +
               f" | {run['counters']['steps']} | {run['wall_time_s']:.1f} |")
     print(f"(histories compared on the common output times up to t = {until} s)")

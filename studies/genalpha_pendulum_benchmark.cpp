@@ -21,7 +21,8 @@
 //                            [--steady-clock]    (time shares read steady_clock, not the TSC)
 //                            [--rescale-at-halvings] (fixed stepping rescales a at a change of h
 //                                                instead of restarting; not the default)
-//                            [--restart-climbs]  (restart also at a climb back: 3e3daf4's fixed-step policy)
+//                            [--restart-climbs]  (restart also at a climb back: 3e3daf4's
+//                            fixed-step policy)
 //                            [--no-recovery-backoff] (climb back after recovery_steps always)
 //                            [--klu-refactor]    (klu_l_refactor instead of the LU on the runs)
 #include <fmt/format.h>
@@ -136,8 +137,7 @@ int main(int argc, char** argv) {
   int runs = 9;
   bool reference = true, profile = false, pivot_growth = false, klu_solve = false,
        divide_pivots = false, rescale_at_halvings = false, restart_climbs = false,
-       recovery_backoff = true,
-       klu_refactor = false;
+       recovery_backoff = true, klu_refactor = false;
   Kernels kernels;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];

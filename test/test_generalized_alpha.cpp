@@ -558,12 +558,12 @@ TEST(GeneralizedAlpha, FixedSteppingRestartsAtHalvingsAndRescalesClimbs) {
   const GridErrors climbs = rigid_pendulum_errors(o, 0.25, 2.0);
   o.step_change = GeneralizedAlphaStepChange::restart;
   const GridErrors restarts = rigid_pendulum_errors(o, 0.25, 2.0);
-  std::printf("rescaled climbs: %ld halvings, %ld changes of h, %ld restarts, q %.3e lambda %.3e; "
-              "restart always: %ld halvings, %ld changes, %ld restarts, q %.3e lambda %.3e\n",
-              climbs.stats.step_halvings, climbs.stats.step_size_changes, climbs.stats.restarts,
-              climbs.q, climbs.lambda, restarts.stats.step_halvings,
-              restarts.stats.step_size_changes, restarts.stats.restarts, restarts.q,
-              restarts.lambda);
+  std::printf(
+      "rescaled climbs: %ld halvings, %ld changes of h, %ld restarts, q %.3e lambda %.3e; "
+      "restart always: %ld halvings, %ld changes, %ld restarts, q %.3e lambda %.3e\n",
+      climbs.stats.step_halvings, climbs.stats.step_size_changes, climbs.stats.restarts, climbs.q,
+      climbs.lambda, restarts.stats.step_halvings, restarts.stats.step_size_changes,
+      restarts.stats.restarts, restarts.q, restarts.lambda);
   EXPECT_GT(climbs.stats.step_halvings, 2);
   EXPECT_EQ(climbs.stats.restarts, 1 + climbs.stats.step_halvings);
   EXPECT_GT(climbs.stats.step_size_changes, climbs.stats.step_halvings);
@@ -577,8 +577,8 @@ TEST(GeneralizedAlpha, FixedSteppingRestartsAtHalvingsAndRescalesClimbs) {
 
 // Output times off the step grid (every 2.5 h: steps h, h, h/2, …) force a shorter step before
 // each output and a longer one after it; each shortening restarts the scheme and each return to
-// h rescales it (see GeneralizedAlphaStepper::change_step_size). The sup errors over the outputs in [0.25, 1.25] s
-// must stay second order in q, v and λ.
+// h rescales it (see GeneralizedAlphaStepper::change_step_size). The sup errors over the outputs in
+// [0.25, 1.25] s must stay second order in q, v and λ.
 TEST(GeneralizedAlpha, OutputTimesOffTheStepGridKeepSecondOrder) {
   const RigidPendulumSpec spec;
   const ExactPendulum exact(spec);

@@ -24,10 +24,10 @@ namespace {
 TEST(MeshGrading, UniformIsExactlyKOverN) {
   const std::vector<double> f = node_fractions(7, 0.3, MeshGrading{});
   for (Index k = 0; k <= 7; ++k) EXPECT_EQ(f[k], static_cast<double>(k) / 7.0);
-  const CableGeometry a = helix_cable(Vec3::Zero(), Vec3::UnitZ(), Vec3::UnitX(), 0.1, 0.3, 2.0,
-                                      0.15, 7);
-  const CableGeometry b = helix_cable(Vec3::Zero(), Vec3::UnitZ(), Vec3::UnitX(), 0.1, 0.3, 2.0,
-                                      0.15, 7, f);
+  const CableGeometry a =
+      helix_cable(Vec3::Zero(), Vec3::UnitZ(), Vec3::UnitX(), 0.1, 0.3, 2.0, 0.15, 7);
+  const CableGeometry b =
+      helix_cable(Vec3::Zero(), Vec3::UnitZ(), Vec3::UnitX(), 0.1, 0.3, 2.0, 0.15, 7, f);
   for (Index k = 0; k <= 7; ++k) EXPECT_EQ(a.nodes[k], b.nodes[k]);
   // Given fractions, a length is L(f_{k+1} − f_k): L/n to the round-off of two fractions ≤ 1
   // (half an ulp of 1 each) and the product, i.e. within 4 ε L.
@@ -51,8 +51,8 @@ TEST(MeshGrading, RefinementIsNestedAndEndsAreGraded) {
   const double end = f[1] - f[0], middle = f[201] - f[200];
   EXPECT_NEAR(end / middle, 0.1, 0.1 * 0.1);
   // One end only: the other end's elements are those of the middle.
-  const std::vector<double> s = node_fractions(400, length, {.end_ratio = 0.1, .end_length = 0.02,
-                                                              .at_end = false});
+  const std::vector<double> s =
+      node_fractions(400, length, {.end_ratio = 0.1, .end_length = 0.02, .at_end = false});
   EXPECT_NEAR((s[1] - s[0]) / (s[400] - s[399]), 0.1, 0.1 * 0.1);
   EXPECT_THROW((void)node_fractions(4, length, {.end_ratio = 0.0, .end_length = 0.02}), ModelError);
   EXPECT_THROW((void)node_fractions(4, length, {.end_ratio = 0.5, .end_length = 0.0}), ModelError);
@@ -61,8 +61,8 @@ TEST(MeshGrading, RefinementIsNestedAndEndsAreGraded) {
 TEST(MeshGrading, GradedHelixNodesLieOnTheHelix) {
   const double radius = 0.1, twist = 2.2256, rise = 0.15, length = std::hypot(radius * twist, rise);
   const std::vector<double> f = node_fractions(24, length, {.end_ratio = 0.2, .end_length = 0.01});
-  const CableGeometry g = helix_cable(Vec3::Zero(), Vec3::UnitZ(), Vec3::UnitX(), radius, 1.57,
-                                      twist, rise, 24, f);
+  const CableGeometry g =
+      helix_cable(Vec3::Zero(), Vec3::UnitZ(), Vec3::UnitX(), radius, 1.57, twist, rise, 24, f);
   double sum = 0.0;
   for (Index k = 0; k < 24; ++k) {
     sum += g.element_lengths[k];
@@ -112,7 +112,8 @@ LayerRun clamp_layer(Index elements, const MeshGrading& grading) {
 }
 
 TEST(MeshGrading, GradedMeshResolvesTheClampLayerOfATautRod) {
-  const double length = 0.268, tension = 145.0, ea = 3.1416e5, phi = 65.0 * std::numbers::pi / 180.0;
+  const double length = 0.268, tension = 145.0, ea = 3.1416e5,
+               phi = 65.0 * std::numbers::pi / 180.0;
   const double ell = std::sqrt(1.20e-3 / tension);
   const MeshGrading graded{.end_ratio = 0.1, .end_length = 0.01, .at_end = false};
   // Closed form (inextensible layer; the stretch T/EA = 4.6e-4 changes the layer terms by that
@@ -120,9 +121,10 @@ TEST(MeshGrading, GradedMeshResolvesTheClampLayerOfATautRod) {
   const double along = length * (1.0 + tension / ea) - 2.0 * ell * (1.0 - std::cos(phi / 2.0));
   const double across = 2.0 * ell * std::sin(phi / 2.0);
   const LayerRun reference = clamp_layer(96, graded);
-  std::printf("clamp layer: ℓ = %.3f mm; closed form along %.6f mm, across %.6f mm; graded 96 "
-              "elements %.6f / %.6f mm\n",
-              1e3 * ell, 1e3 * along, 1e3 * across, 1e3 * reference.along, 1e3 * reference.across);
+  std::printf(
+      "clamp layer: ℓ = %.3f mm; closed form along %.6f mm, across %.6f mm; graded 96 "
+      "elements %.6f / %.6f mm\n",
+      1e3 * ell, 1e3 * along, 1e3 * across, 1e3 * reference.along, 1e3 * reference.across);
   EXPECT_NEAR(reference.along, along, 5e-6);
   EXPECT_NEAR(reference.across, across, 5e-6);
   for (const Index n : {12, 24}) {

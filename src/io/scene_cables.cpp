@@ -79,8 +79,9 @@ CableGeometry read_geometry(TableReader g, Index elements, GeometryAxis* axis_ou
     geo = straight_cable(a, b, elements, fractions);
   } else if (kind == "polyline") {
     if (!fractions.empty())
-      g.fail("kind", "a graded mesh ('grading') needs a straight, helix or arc geometry, not a "
-                     "polyline (its elements follow the segments)");
+      g.fail("kind",
+             "a graded mesh ('grading') needs a straight, helix or arc geometry, not a "
+             "polyline (its elements follow the segments)");
     geo = polyline_cable(g, g.vec3_list("points", 2), elements);
   } else if (kind == "helix") {
     const Vec3 base = g.vec3_or("base", Vec3::Zero());
@@ -122,6 +123,9 @@ CableMesh read_cable_mesh(TableReader& t, Index elements) {
     grading.at_start = ends != "end";
     grading.at_end = ends != "start";
     gr->finish();
+    // The fractions need the geometry's arc length: take it from the equal-element mesh (a
+    // load-time cost of one more small mesh; each kind's length formula then lives in its generator
+    // only).
     const CableGeometry uniform = read_geometry(t.table("geometry"), elements);
     double length = 0.0;
     for (double l : uniform.element_lengths) length += l;

@@ -59,9 +59,10 @@ IntegratorSettings read_integrator(TableReader& root) {
     s.ga_max_reuse_rate = ga->number_or("max_reuse_rate", s.ga_max_reuse_rate, Range::positive);
     if (s.ga_max_reuse_rate >= 1.0)
       ga->fail("max_reuse_rate", "expected a contraction rate in (0, 1)");
-    const std::string change = ga->choice(
-        "step_change", {"automatic", "restart", "rescale", "rescale_with_velocity", "rescale_climbs"},
-        "automatic");
+    const std::string change =
+        ga->choice("step_change",
+                   {"automatic", "restart", "rescale", "rescale_with_velocity", "rescale_climbs"},
+                   "automatic");
     s.ga_step_change = change == "restart"   ? GeneralizedAlphaStepChange::restart
                        : change == "rescale" ? GeneralizedAlphaStepChange::rescale
                        : change == "rescale_with_velocity"

@@ -95,13 +95,22 @@ void GeneralizedAlphaStepper::change_step_size(double h_new) {
   // rescale_climbs: a climb back after a halving is one bounded ratio (2) after accepted steps,
   // which is what the rescale is safe for; restarting there re-excites the modes that made the
   // step fail (docs/time_step_control.md, "Recovery after halvings").
+  const bool climb = h_new > a_h_;
   bool rescaling = false;
   switch (options_.step_change) {
-    case GeneralizedAlphaStepChange::automatic: rescaling = adaptive() || h_new > a_h_; break;
-    case GeneralizedAlphaStepChange::restart: rescaling = false; break;
-    case GeneralizedAlphaStepChange::rescale_climbs: rescaling = h_new > a_h_; break;
+    case GeneralizedAlphaStepChange::automatic:
+      rescaling = adaptive() || climb;
+      break;
+    case GeneralizedAlphaStepChange::restart:
+      rescaling = false;
+      break;
+    case GeneralizedAlphaStepChange::rescale_climbs:
+      rescaling = climb;
+      break;
     case GeneralizedAlphaStepChange::rescale:
-    case GeneralizedAlphaStepChange::rescale_with_velocity: rescaling = true; break;
+    case GeneralizedAlphaStepChange::rescale_with_velocity:
+      rescaling = true;
+      break;
   }
   if (rescaling)
     rescale(h_new);

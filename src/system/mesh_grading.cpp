@@ -21,8 +21,7 @@ std::vector<double> node_fractions(Index elements, double length, const MeshGrad
   if (!(grading.end_ratio > 0.0 && grading.end_ratio <= 1.0))
     throw ModelError("mesh grading: end_ratio must be in (0, 1], got " +
                      std::to_string(grading.end_ratio));
-  if (!(grading.end_length > 0.0))
-    throw ModelError("mesh grading: end_length must be > 0 [m]");
+  if (!(grading.end_length > 0.0)) throw ModelError("mesh grading: end_length must be > 0 [m]");
   // In units of L: x = s/L, λ = ℓ/L; N(x) = x + cλ[a(1 − e^{−x/λ}) + b(e^{−(1−x)/λ} − e^{−1/λ})],
   // N'(x) = ρ(x) ≥ 1, so N is strictly increasing and Newton with a bracket converges.
   const double c = 1.0 / grading.end_ratio - 1.0, lambda = grading.end_length / length;
@@ -45,7 +44,10 @@ std::vector<double> node_fractions(Index elements, double length, const MeshGrad
     for (int it = 0; it < 200; ++it) {
       if (!(x > left && x < right)) x = 0.5 * (left + right);
       const double r = count(x) - target;
-      if (r > 0.0) right = x; else left = x;
+      if (r > 0.0)
+        right = x;
+      else
+        left = x;
       const double next = x - r / density(x);
       if (std::abs(next - x) <= 4.0 * std::numeric_limits<double>::epsilon() * x ||
           right - left <= 4.0 * std::numeric_limits<double>::epsilon()) {

@@ -153,7 +153,8 @@ struct GeneralizedAlphaOptions {
   /// failure later, or a climb that holds, returns it to recovery_steps. A cascade of
   /// fail–halve–climb–fail (with step_change = restart each climb restarts the scheme and
   /// re-excites the modes that made the step fail: 1 719 failures in 1 s of the 1000-element
-  /// benchmark pendulum) then costs a few failures. false: climb after recovery_steps always (3e3daf4 … issue 20, third session).
+  /// benchmark pendulum) then costs a few failures. false: climb after recovery_steps always
+  /// (3e3daf4 … issue 20, third session).
   bool recovery_backoff = true;
   int max_recovery_steps = 256;
 
