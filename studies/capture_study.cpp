@@ -140,9 +140,12 @@ std::string apply_overrides(const Options& o) {
   if (o.axial_damping >= 0.0 || o.bending_stiffness >= 0.0 || o.bending_damping >= 0.0 || o.mass_damping >= 0.0)
     for (toml::node& c : *root[root["cable"].as_array() ? "cable" : "rod"].as_array()) {
       toml::table& section = *c.as_table()->at("section").as_table();
+      const bool rod = !root["cable"].as_array();  // a rod always bends: no 'bending' switch
       if (o.axial_damping >= 0.0) section.insert_or_assign("axial_damping", o.axial_damping);
       if (o.bending_stiffness > 0.0) {
-        section.insert_or_assign("bending", true);
+        if (!rod) section.insert_or_assign("bending", true);
+        section.erase("EI2");
+        section.erase("EI3");
         section.insert_or_assign("EI", o.bending_stiffness);
       }
       if (o.bending_damping >= 0.0) section.insert_or_assign("bending_damping", o.bending_damping);

@@ -6,11 +6,13 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "ancf/physics/hermite_shape.hpp"
@@ -64,8 +66,9 @@ std::vector<Case> cases() {
   return out;
 }
 
-RodSection section(bool damping) {
+RodSection section(bool damping, RodAxialStrain axial = RodAxialStrain::collocated) {
   RodSection s;
+  s.axial_strain = axial;
   s.axial_stiffness = 3e3;  // comparable terms, so no block hides in round-off of another
   s.torsional_stiffness = 0.7;
   s.bending_stiffness_2 = 1.1;
@@ -219,21 +222,29 @@ std::vector<FdCase> fd_cases() {
   return out;
 }
 
+constexpr std::array<RodAxialStrain, 2> kAxialStrains{RodAxialStrain::collocated,
+                                                      RodAxialStrain::gauss_points};
+
 TEST(KirchhoffRod, ForceIsEnergyGradient) {
-  const RodSection s = section(false);
-  for (const FdCase& c : fd_cases()) {
-    const auto r = eval(s, c.ref, c.history, c.e, c.e_dot, false, false);
-    const auto energy = [&](const fdcheck::Vec& x) {
-      return eval(s, c.ref, c.history, Vec14(x), c.e_dot, false, false).energy;
-    };
-    const auto res = fdcheck::check_gradient(energy, c.e, r.force);
-    EXPECT_TRUE(res.ok()) << c.name << ": ratio " << res.max_ratio << " at " << res.col;
+  for (const RodAxialStrain axial : kAxialStrains) {
+    const RodSection s = section(false, axial);
+    for (const FdCase& c : fd_cases()) {
+      const auto r = eval(s, c.ref, c.history, c.e, c.e_dot, false, false);
+      const auto energy = [&](const fdcheck::Vec& x) {
+        return eval(s, c.ref, c.history, Vec14(x), c.e_dot, false, false).energy;
+      };
+      const auto res = fdcheck::check_gradient(energy, c.e, r.force);
+      EXPECT_TRUE(res.ok()) << c.name << ": ratio " << res.max_ratio << " at " << res.col;
+    }
   }
 }
 
 TEST(KirchhoffRod, StiffnessAndDampingMatrices) {
-  for (const bool damping : {false, true}) {
-    const RodSection s = section(damping);
+  for (const auto& [damping, axial] :
+       {std::pair{false, RodAxialStrain::collocated}, std::pair{true, RodAxialStrain::collocated},
+        std::pair{false, RodAxialStrain::gauss_points},
+        std::pair{true, RodAxialStrain::gauss_points}}) {
+    const RodSection s = section(damping, axial);
     for (const FdCase& c : fd_cases()) {
       const auto r = eval(s, c.ref, c.history, c.e, c.e_dot, true, damping);
       // Residual-only and full evaluations agree (two jet types, same operations).
@@ -262,8 +273,11 @@ TEST(KirchhoffRod, StiffnessAndDampingMatrices) {
 // The two kernels (RodKernel): same operations for the values, so energy and strains are bitwise
 // equal; force, tangent and damping matrix agree to round-off.
 TEST(KirchhoffRod, LocalChainKernelEqualsElementJets) {
-  for (const bool damping : {false, true}) {
-    const RodSection s = section(damping);
+  for (const auto& [damping, axial] :
+       {std::pair{false, RodAxialStrain::collocated}, std::pair{true, RodAxialStrain::collocated},
+        std::pair{false, RodAxialStrain::gauss_points},
+        std::pair{true, RodAxialStrain::gauss_points}}) {
+    const RodSection s = section(damping, axial);
     for (const FdCase& c : fd_cases()) {
       for (const bool k : {false, true}) {
         RodElementResult local, full;

@@ -90,6 +90,10 @@ RodInput read_rod_section(TableReader s) {
   r.torsional_damping = s.number_or("torsional_damping", 0.0, Range::non_negative);
   r.bending_damping = s.number_or("bending_damping", 0.0, Range::non_negative);
   in.cable.mass_damping = s.number_or("mass_damping", 0.0, Range::non_negative);
+  r.axial_strain =
+      s.choice("axial_strain", {"collocated", "gauss_points"}, "collocated") == "gauss_points"
+          ? RodAxialStrain::gauss_points
+          : RodAxialStrain::collocated;
   in.cable.mass_per_length = r.mass_per_length;
   s.finish();
   return in;

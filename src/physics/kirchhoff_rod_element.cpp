@@ -10,6 +10,7 @@
 #include "ancf/core/gauss_legendre.hpp"
 #include "ancf/physics/hermite_shape.hpp"
 #include "ancf/physics/jet.hpp"
+#include "kirchhoff_rod_axial.hpp"
 #include "kirchhoff_rod_local_chain.hpp"
 #include "kirchhoff_rod_strains.hpp"
 
@@ -88,6 +89,15 @@ RodElementReference RodElementReference::from_reference(const Vec12& e0, double 
     if (!(j0 > 0.0)) throw ModelError("Kirchhoff rod element: vanishing reference slope");
     ref.inv_j0[p] = 1.0 / j0;
     ref.weight[p] = rule.weights[p] * length * j0;
+    ref.collocation_weight[p] = collocation_lagrange(xi);
+  }
+  for (int c = 0; c < 3; ++c) {
+    const double xi = 0.5 * c;
+    ref.collocation_d1[c] = hermite::first_derivative(xi, length);
+    Vec3 a = Vec3::Zero();
+    for (int k = 0; k < 4; ++k) a += ref.collocation_d1[c][k] * e0.segment<3>(3 * k);
+    if (!(a.norm() > 0.0)) throw ModelError("Kirchhoff rod element: vanishing reference slope");
+    ref.collocation_inv_j0[c] = 1.0 / a.norm();
   }
   Vec14 e = Vec14::Zero();
   e.head<12>() = e0;
@@ -157,10 +167,8 @@ void evaluate_with_element_jets(const RodSection& section, const RodElementRefer
   const std::array<double, 4> damp{section.axial_damping, section.torsional_damping,
                                    section.bending_damping, section.bending_damping};
   const bool damping = section.has_damping();
-  out.energy = 0.0;
-  out.force.setZero();
-  if (request.stiffness) out.stiffness.setZero();
-  if (request.damping_matrix) out.damping.setZero();
+  // The axial strain at the Gauss points, unless it is collocated (add_collocated_axial).
+  const int first_strain = section.axial_strain == RodAxialStrain::collocated ? 1 : 0;
 
   // One pass per Gauss point over the four strains of a jet type J (with or without Hessians).
   auto run = [&](auto tag) {
@@ -171,7 +179,7 @@ void evaluate_with_element_jets(const RodSection& section, const RodElementRefer
       const auto s = point_strains(point_data(ref, p), f, x);
       const double w = ref.weight[p];
       if (p == kRodGaussPoints / 2) out.strain_mid = Vec3(s[1].v, s[2].v, s[3].v);
-      for (int k = 0; k < 4; ++k) {
+      for (int k = first_strain; k < 4; ++k) {
         const double d = s[k].v - (k == 0 ? 0.0 : ref.k0[p][k - 1]);
         out.energy += 0.5 * w * stiff[k] * d * d;
         double rate = 0.0;
@@ -204,10 +212,16 @@ void evaluate_with_element_jets(const RodSection& section, const RodElementRefer
 void evaluate_rod_element(const RodSection& section, const RodElementReference& ref,
                           const RodElementHistory& history, const Vec14& e, const Vec14& e_dot,
                           const RodEvalRequest& request, RodElementResult& out) {
+  out.energy = 0.0;
+  out.force.setZero();
+  if (request.stiffness) out.stiffness.setZero();
+  if (request.damping_matrix) out.damping.setZero();
   if (request.kernel == RodKernel::element_jets)
     evaluate_with_element_jets(section, ref, history, e, e_dot, request, out);
   else
     rod_detail::evaluate_with_local_chain(section, ref, history, e, e_dot, request, out);
+  if (section.axial_strain == RodAxialStrain::collocated)
+    rod_detail::add_collocated_axial(section, ref, e, e_dot, request, out);
 }
 
 }  // namespace ancf

@@ -266,6 +266,8 @@ void evaluate(const RodSection& section, const RodElementReference& ref,
                                    section.bending_damping, section.bending_damping};
   const bool damping = section.has_damping();
   const bool stiffness = kSecond && request.stiffness;
+  // The axial strain at the Gauss points, unless it is collocated (add_collocated_axial).
+  const int first_strain = section.axial_strain == RodAxialStrain::collocated ? 1 : 0;
 
   // Element frame: node 1's triad in t₁, ζ = α₂ + ω in (t₁, t₂) (α₂ enters linearly).
   const NodeFrame<kSecond> frame = staged_element_frame<kSecond>(history, e);
@@ -289,7 +291,7 @@ void evaluate(const RodSection& section, const RodElementReference& ref,
     LocalVec f = LocalVec::Zero();
     LocalMat k_local = LocalMat::Zero(), d_local = LocalMat::Zero();
     LocalVec z_local = LocalVec::Zero();
-    for (int k = 0; k < 4; ++k) {
+    for (int k = first_strain; k < 4; ++k) {
       const double d = s[k].v - (k == 0 ? 0.0 : ref.k0[p][k - 1]);
       out.energy += 0.5 * w * stiff[k] * d * d;
       const bool damped = damping && damp[k] > 0.0;
@@ -341,10 +343,6 @@ void evaluate(const RodSection& section, const RodElementReference& ref,
 void evaluate_with_local_chain(const RodSection& section, const RodElementReference& ref,
                                const RodElementHistory& history, const Vec14& e, const Vec14& e_dot,
                                const RodEvalRequest& request, RodElementResult& out) {
-  out.energy = 0.0;
-  out.force.setZero();
-  if (request.stiffness) out.stiffness.setZero();
-  if (request.damping_matrix) out.damping.setZero();
   if (request.stiffness)
     evaluate<true>(section, ref, history, e, e_dot, request, out);
   else

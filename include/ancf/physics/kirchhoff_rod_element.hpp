@@ -31,6 +31,18 @@ using Mat14 = Eigen::Matrix<double, 14, 14>;
 /// Gauss points per rod element (4, as 4C's beam3k: exact for the linearised straight element).
 inline constexpr int kRodGaussPoints = 4;
 
+/// Where the axial strain of the energy ½EA ε² is taken.
+enum class RodAxialStrain {
+  /// ε = |r_x|/J₀ − 1 at each Gauss point. Locks in bending of slender curved elements
+  /// (membrane locking: docs/rod.md measures it).
+  gauss_points,
+  /// ε at the three collocation points ξ = 0, ½, 1, re-interpolated to the Gauss points by the
+  /// quadratic Lagrange polynomials (the assumed strain of Meier, Popp & Wall, "A locking-free
+  /// finite element formulation and reduced models for geometrically exact Kirchhoff rods",
+  /// CMAME 290 (2015) 314–341; 4C's BEAM3K `epsilon_cp`). The default.
+  collocated,
+};
+
 /// Section data of a rod (all elements of a rod share it). Units SI.
 struct RodSection {
   double axial_stiffness = 0.0;      ///< EA [N]
@@ -42,6 +54,7 @@ struct RodSection {
   double axial_damping = 0.0;        ///< c_a [N s]: axial force c_a ε̇
   double torsional_damping = 0.0;    ///< c_t [N m² s]: torque c_t K̇₁
   double bending_damping = 0.0;      ///< c_b [N m² s]: bending moments c_b K̇₂, c_b K̇₃
+  RodAxialStrain axial_strain = RodAxialStrain::collocated;
   [[nodiscard]] bool has_damping() const {
     return axial_damping > 0.0 || torsional_damping > 0.0 || bending_damping > 0.0;
   }
@@ -63,6 +76,11 @@ struct RodElementReference {
   std::array<double, kRodGaussPoints> weight{};  ///< w_g l J₀
   std::array<double, kRodGaussPoints> inv_j0{};  ///< 1/J₀
   std::array<Vec3, kRodGaussPoints> k0{};        ///< (K₁⁰, K₂⁰, K₃⁰)
+  /// Axial strain at the collocation points ξ_c = 0, ½, 1 (RodAxialStrain::collocated):
+  /// dS/dx there, 1/J₀ there, and the Lagrange weights L_c(ξ_p) of each Gauss point p.
+  std::array<Vec4, 3> collocation_d1;
+  std::array<double, 3> collocation_inv_j0{};
+  std::array<std::array<double, 3>, kRodGaussPoints> collocation_weight{};
 
   /// From the reference centreline e0 (12), length l > 0 and the reference history (the nodes'
   /// reference material triads with α = 0; history.omega is set here). Throws ModelError if a
@@ -107,7 +125,7 @@ void evaluate_rod_element(const RodSection& section, const RodElementReference& 
 /// Material triad and strains at a point ξ ∈ [0, 1] of the element (diagnostics, outputs, tests).
 struct RodPointState {
   Mat3 triad;           ///< columns [g₁, d₂, d₃]
-  double axial_strain;  ///< ε
+  double axial_strain;  ///< ε = |r_x|/J₀ − 1 at ξ itself (not re-interpolated)
   Vec3 curvature;       ///< (K₁, K₂, K₃) [1/m] (not minus the reference's)
 };
 [[nodiscard]] RodPointState rod_point_state(const RodElementReference& ref,
