@@ -28,12 +28,12 @@ void BM_RodElement(benchmark::State& state) {
   const RodSection section = HelixElementCase::rod_section();
   RodElementHistory h = s.rod_history();
   const auto ref = s.rod_reference(h);
-  const Vec14 e = s.rod_coordinates();
+  const Vec15 e = s.rod_coordinates();
   RodElementResult out;
   const bool tangent = state.range(0) != 0;
   const RodKernel kernel = state.range(1) != 0 ? RodKernel::element_jets : RodKernel::local_chain;
   for (auto _ : state) {
-    evaluate_rod_element(section, ref, h, e, Vec14::Zero(),
+    evaluate_rod_element(section, ref, h, e, Vec15::Zero(),
                          {.stiffness = tangent, .kernel = kernel}, out);
     benchmark::DoNotOptimize(out.force.data());
     benchmark::DoNotOptimize(out.stiffness.data());

@@ -14,6 +14,7 @@ struct HelixElementCase {
   Vec12 e0 = g.element_coordinates(1);                ///< reference coordinates [m, –]
   Vec12 e = e0 + 0.01 * Vec12::LinSpaced(-1.0, 1.0);  ///< evaluated coordinates
   double twist1 = 0.05, twist2 = -0.03;               ///< nodal twist angles of the rod [rad]
+  double interior_twist = 0.02;  ///< interior twist β of the rod element [rad]
 
   [[nodiscard]] static CableSection cable_section() {
     CableSection section;
@@ -47,9 +48,10 @@ struct HelixElementCase {
   [[nodiscard]] RodElementReference rod_reference(RodElementHistory& h) const {
     return RodElementReference::from_reference(e0, g.element_lengths[1], h);
   }
-  [[nodiscard]] Vec14 rod_coordinates() const {
-    Vec14 r;
-    r << e, twist1, twist2;
+  /// The rod element coordinates (r, t, twist angles and an interior twist).
+  [[nodiscard]] Vec15 rod_coordinates() const {
+    Vec15 r;
+    r << e, twist1, twist2, interior_twist;
     return r;
   }
 };

@@ -35,12 +35,12 @@ int main(int argc, char** argv) {
     const RodSection section = bench::HelixElementCase::rod_section();
     RodElementHistory h = c.rod_history();
     const auto ref = c.rod_reference(h);
-    Vec14 e = c.rod_coordinates();
+    Vec15 e = c.rod_coordinates();
     const RodKernel k = kernel == "local_chain" ? RodKernel::local_chain : RodKernel::element_jets;
     RodElementResult out;
     for (int i = 0; i < calls; ++i) {
       e[0] += 1e-9;
-      evaluate_rod_element(section, ref, h, e, Vec14::Zero(), {.stiffness = tangent, .kernel = k},
+      evaluate_rod_element(section, ref, h, e, Vec15::Zero(), {.stiffness = tangent, .kernel = k},
                            out);
       sum += out.force[0] + (tangent ? out.stiffness(3, 4) : 0.0);
     }

@@ -81,15 +81,15 @@ RodSection section(bool damping, RodAxialStrain axial = RodAxialStrain::collocat
   return s;
 }
 
-Vec14 with_twist(const Vec12& e, double a1, double a2) {
-  Vec14 x;
-  x << e, a1, a2;
+Vec15 with_twist(const Vec12& e, double a1, double a2, double beta = 0.0) {
+  Vec15 x;
+  x << e, a1, a2, beta;
   return x;
 }
 
 // Rigid rotation Q of coordinates (positions about the origin) and of the history.
-Vec14 rotated(const Mat3& q, const Vec14& e) {
-  Vec14 out = e;
+Vec15 rotated(const Mat3& q, const Vec15& e) {
+  Vec15 out = e;
   for (int k = 0; k < 4; ++k) out.segment<3>(3 * k) = q * e.segment<3>(3 * k);
   return out;
 }
@@ -100,7 +100,7 @@ RodElementHistory rotated(const Mat3& q, RodElementHistory h) {
 }
 
 RodElementResult eval(const RodSection& s, const RodElementReference& ref,
-                      const RodElementHistory& h, const Vec14& e, const Vec14& ed, bool k, bool d) {
+                      const RodElementHistory& h, const Vec15& e, const Vec15& ed, bool k, bool d) {
   RodElementResult r;
   evaluate_rod_element(s, ref, h, e, ed, {.stiffness = k, .damping_matrix = d}, r);
   return r;
@@ -110,8 +110,8 @@ TEST(KirchhoffRod, ReferenceIsExactlyStressFree) {
   for (const Case& c : cases()) {
     RodElementHistory h = c.history;
     const auto ref = RodElementReference::from_reference(c.e0, c.length, h);
-    const Vec14 e = with_twist(c.e0, 0.0, 0.0);
-    const auto r = eval(section(false), ref, h, e, Vec14::Zero(), false, false);
+    const Vec15 e = with_twist(c.e0, 0.0, 0.0);
+    const auto r = eval(section(false), ref, h, e, Vec15::Zero(), false, false);
     // K − K⁰ vanishes exactly (same operations); ε = |r_x|/J₀ − 1 to a few ulps.
     const double ea = section(false).axial_stiffness;
     EXPECT_LE(r.energy, 64 * kEps * kEps * ea * c.length) << c.name;
@@ -126,17 +126,17 @@ TEST(KirchhoffRod, RigidRotationOfCurvedTwistedRod) {
     const auto ref = RodElementReference::from_reference(c.e0, c.length, h);
     const RodSection s = section(false);
     // A deformed, twisted state and its rigidly rotated copy (history rotated with it).
-    Vec14 e = with_twist(c.e0, 0.2, -0.3);
+    Vec15 e = with_twist(c.e0, 0.2, -0.3, 0.15);
     for (int i = 0; i < 12; ++i) e[i] += 0.02 * random_vec3(rng, 1.0)[i % 3];
-    const auto r0 = eval(s, ref, h, e, Vec14::Zero(), false, false);
+    const auto r0 = eval(s, ref, h, e, Vec15::Zero(), false, false);
     for (int trial = 0; trial < 3; ++trial) {
       const Mat3 q = random_rotation(rng);
-      const auto rq = eval(s, ref, rotated(q, h), rotated(q, e), Vec14::Zero(), false, false);
+      const auto rq = eval(s, ref, rotated(q, h), rotated(q, e), Vec15::Zero(), false, false);
       EXPECT_NEAR(rq.energy, r0.energy, 64 * kEps * r0.energy) << c.name;
-      const Vec14 f_back = rotated(q.transpose(), rq.force);
+      const Vec15 f_back = rotated(q.transpose(), rq.force);
       EXPECT_LE((f_back - r0.force).norm(), 1e3 * kEps * r0.force.norm()) << c.name;
       // The stress-free reference rotated rigidly stays stress-free (to round-off).
-      const auto z = eval(s, ref, rotated(q, h), rotated(q, with_twist(c.e0, 0, 0)), Vec14::Zero(),
+      const auto z = eval(s, ref, rotated(q, h), rotated(q, with_twist(c.e0, 0, 0)), Vec15::Zero(),
                           false, false);
       EXPECT_LE(z.energy, 1e3 * kEps * kEps * s.axial_stiffness * c.length) << c.name;
       EXPECT_LE(z.force.norm(), 1e3 * kEps * s.axial_stiffness) << c.name;
@@ -151,11 +151,17 @@ TEST(KirchhoffRod, TwistRateOfStraightRod) {
   RodElementHistory h = c.history;
   const auto ref = RodElementReference::from_reference(c.e0, c.length, h);
   const RodSection s = section(false);
-  EXPECT_LE(eval(s, ref, h, with_twist(c.e0, 0.7, 0.7), Vec14::Zero(), false, false).energy, 1e-28);
+  EXPECT_LE(eval(s, ref, h, with_twist(c.e0, 0.7, 0.7), Vec15::Zero(), false, false).energy, 1e-28);
   const double delta = 0.25;
-  const auto r = eval(s, ref, h, with_twist(c.e0, 0.0, delta), Vec14::Zero(), false, false);
+  const auto r = eval(s, ref, h, with_twist(c.e0, 0.0, delta), Vec15::Zero(), false, false);
   // U = ½ GJ (Δ/l)² l
   EXPECT_NEAR(r.energy, 0.5 * s.torsional_stiffness * delta * delta / c.length, 1e-13 * r.energy);
+  // The interior twist β alone: ψ_x = 4(1 − 2ξ)β/l, U = ½ GJ ∫ ψ_x² dx = 8 GJ β²/(3 l); the
+  // 4-point Gauss rule integrates the quadratic exactly.
+  const double beta = 0.3;
+  const auto rb = eval(s, ref, h, with_twist(c.e0, 0.0, 0.0, beta), Vec15::Zero(), false, false);
+  EXPECT_NEAR(rb.energy, 8.0 * s.torsional_stiffness * beta * beta / (3.0 * c.length),
+              1e-13 * rb.energy);
 }
 
 // K₁ equals the twist rate d₂′·d₃ of the interpolated triad, and K₂, K₃ the curvature in it:
@@ -165,7 +171,7 @@ TEST(KirchhoffRod, StrainsAreThoseOfTheInterpolatedTriad) {
   for (const Case& c : cases()) {
     RodElementHistory h = c.history;
     const auto ref = RodElementReference::from_reference(c.e0, c.length, h);
-    Vec14 e = with_twist(c.e0, 0.3, -0.5);
+    Vec15 e = with_twist(c.e0, 0.3, -0.5, 0.4);
     for (int i = 0; i < 12; ++i) e[i] += 0.03 * random_vec3(rng, 1.0)[i % 3];
     for (const double xi : {0.2, 0.5, 0.8}) {
       Vec3 a0 = Vec3::Zero();
@@ -193,7 +199,7 @@ struct FdCase {
   std::string name;
   RodElementHistory history;
   RodElementReference ref;
-  Vec14 e, e_dot;
+  Vec15 e, e_dot;
 };
 
 // States: moderately deformed; strongly deformed (large twist, bent); rigidly rotated by a large
@@ -206,7 +212,8 @@ std::vector<FdCase> fd_cases() {
     const auto ref = RodElementReference::from_reference(c.e0, c.length, h);
     for (int kind = 0; kind < 3; ++kind) {
       const double amp = kind == 0 ? 0.02 : 0.1;
-      Vec14 e = with_twist(c.e0, kind == 0 ? 0.1 : 1.2, kind == 0 ? -0.2 : -1.9);
+      Vec15 e =
+          with_twist(c.e0, kind == 0 ? 0.1 : 1.2, kind == 0 ? -0.2 : -1.9, kind == 0 ? 0.05 : 0.9);
       for (int i = 0; i < 12; ++i) e[i] += amp * random_vec3(rng, 1.0)[i % 3];
       RodElementHistory hk = h;
       if (kind == 2) {
@@ -214,8 +221,8 @@ std::vector<FdCase> fd_cases() {
         e = rotated(q, e);
         hk = rotated(q, h);
       }
-      Vec14 ed;
-      for (int i = 0; i < 14; ++i) ed[i] = random_vec3(rng, 1.0)[i % 3];
+      Vec15 ed;
+      for (int i = 0; i < 15; ++i) ed[i] = random_vec3(rng, 1.0)[i % 3];
       out.push_back({c.name + " state " + std::to_string(kind), hk, ref, e, ed});
     }
   }
@@ -231,7 +238,7 @@ TEST(KirchhoffRod, ForceIsEnergyGradient) {
     for (const FdCase& c : fd_cases()) {
       const auto r = eval(s, c.ref, c.history, c.e, c.e_dot, false, false);
       const auto energy = [&](const fdcheck::Vec& x) {
-        return eval(s, c.ref, c.history, Vec14(x), c.e_dot, false, false).energy;
+        return eval(s, c.ref, c.history, Vec15(x), c.e_dot, false, false).energy;
       };
       const auto res = fdcheck::check_gradient(energy, c.e, r.force);
       EXPECT_TRUE(res.ok()) << c.name << ": ratio " << res.max_ratio << " at " << res.col;
@@ -251,7 +258,7 @@ TEST(KirchhoffRod, StiffnessAndDampingMatrices) {
       const auto f_only = eval(s, c.ref, c.history, c.e, c.e_dot, false, false);
       EXPECT_LE((f_only.force - r.force).norm(), 16 * kEps * r.force.norm()) << c.name;
       const auto force_q = [&](const fdcheck::Vec& x) {
-        return fdcheck::Vec(eval(s, c.ref, c.history, Vec14(x), c.e_dot, false, false).force);
+        return fdcheck::Vec(eval(s, c.ref, c.history, Vec15(x), c.e_dot, false, false).force);
       };
       const auto kq = fdcheck::check_jacobian(force_q, c.e, r.stiffness);
       EXPECT_TRUE(kq.ok()) << c.name << " damping " << damping << ": K ratio " << kq.max_ratio
@@ -262,7 +269,7 @@ TEST(KirchhoffRod, StiffnessAndDampingMatrices) {
           << c.name;  // without damping K is a Hessian
       if (!damping) continue;
       const auto force_v = [&](const fdcheck::Vec& v) {
-        return fdcheck::Vec(eval(s, c.ref, c.history, c.e, Vec14(v), false, false).force);
+        return fdcheck::Vec(eval(s, c.ref, c.history, c.e, Vec15(v), false, false).force);
       };
       const auto dv = fdcheck::check_jacobian(force_v, c.e_dot, r.damping);
       EXPECT_TRUE(dv.ok()) << c.name << ": D ratio " << dv.max_ratio;
@@ -308,7 +315,7 @@ TEST(KirchhoffRod, OmegaIsTrackedWithoutWrap) {
   const Case c = cases()[2];
   RodElementHistory h = c.history;
   (void)RodElementReference::from_reference(c.e0, c.length, h);  // sets h.omega
-  const Vec14 e = with_twist(c.e0, 0.0, 0.0);
+  const Vec15 e = with_twist(c.e0, 0.0, 0.0);
   RodElementHistory far = h;
   far.omega = h.omega + 2.0 * std::numbers::pi;  // a committed value one turn away
   const double w = rod_element_omega(far, e);
@@ -347,11 +354,25 @@ TEST(KirchhoffRod, EndMomentIsVirtualWorkOfTheMoment) {
   }
 }
 
-TEST(KirchhoffRod, TwistMassIntegratesLinearTwist) {
+TEST(KirchhoffRod, TwistMassIntegratesTheTwistRate) {
   // ∫ ρJ ψ̇² dx for ψ̇ linear from 1 to 3 on l = 2: ρJ l (1 + 1·3 + 9)/3
-  const Eigen::Matrix2d m = rod_twist_mass(0.5, 2.0);
-  const Eigen::Vector2d v(1.0, 3.0);
+  const Mat3 m = rod_twist_mass(0.5, 2.0);
+  const Vec3 v(1.0, 3.0, 0.0);
   EXPECT_NEAR(v.dot(m * v), 0.5 * 2.0 * 13.0 / 3.0, 1e-14);
+  // With a bubble rate: ψ̇ = (1 − ξ) + 3ξ + 4ξ(1 − ξ)·2, integrated by a 5-point Gauss rule
+  // (exact for the quartic).
+  const Vec3 w(1.0, 3.0, 2.0);
+  const std::array<double, 5> x{-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
+                                0.9061798459386640};
+  const std::array<double, 5> g{0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
+                                0.4786286704993665, 0.2369268850561891};
+  double integral = 0.0;
+  for (int i = 0; i < 5; ++i) {
+    const double xi = 0.5 * (x[i] + 1.0);
+    const double rate = (1.0 - xi) * w[0] + xi * w[1] + 4.0 * xi * (1.0 - xi) * w[2];
+    integral += 0.5 * g[i] * 0.5 * 2.0 * rate * rate;  // dξ = dx/2 on [−1, 1], ρJ l = 1
+  }
+  EXPECT_NEAR(w.dot(m * w), integral, 1e-14);
 }
 
 }  // namespace

@@ -164,7 +164,7 @@ const std::vector<double>& ProbeRecorder::evaluate(const SystemState& state, Wor
         const RodPointState now =
             rod_point_state(c.rod->elements[j], h.element(p.target, j),
                             rod_element_coordinates(c, j, as_span(state.q)), 0.5);
-        Vec14 e0 = Vec14::Zero();
+        Vec15 e0 = Vec15::Zero();
         e0.head<12>() = c.rod->elements[j].e0;
         const RodPointState ref = rod_point_state(
             c.rod->elements[j],

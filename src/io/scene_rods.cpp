@@ -94,6 +94,9 @@ RodInput read_rod_section(TableReader s) {
       s.choice("axial_strain", {"collocated", "gauss_points"}, "collocated") == "gauss_points"
           ? RodAxialStrain::gauss_points
           : RodAxialStrain::collocated;
+  r.twist = s.choice("twist_interpolation", {"quadratic", "linear"}, "quadratic") == "linear"
+                ? RodTwist::linear
+                : RodTwist::quadratic;
   in.cable.mass_per_length = r.mass_per_length;
   s.finish();
   return in;

@@ -28,7 +28,7 @@ struct CollocationStrain {
   Mat3 hess;  // ∂²ε_c/∂a_c²
 };
 
-CollocationStrain collocation_strain(const Vec4& d1, double inv_j0, const Vec14& e) {
+CollocationStrain collocation_strain(const Vec4& d1, double inv_j0, const Vec15& e) {
   Vec3 a = d1[0] * e.segment<3>(0);
   for (int k = 1; k < 4; ++k) a += d1[k] * e.segment<3>(3 * k);
   const double n = a.norm();
@@ -45,8 +45,8 @@ Vec12 centreline_gradient(const Vec4& d1, const Vec3& v) {
 
 }  // namespace
 
-void add_collocated_axial(const RodSection& section, const RodElementReference& ref, const Vec14& e,
-                          const Vec14& e_dot, const RodEvalRequest& request,
+void add_collocated_axial(const RodSection& section, const RodElementReference& ref, const Vec15& e,
+                          const Vec15& e_dot, const RodEvalRequest& request,
                           RodElementResult& out) {
   const double ea = section.axial_stiffness, ca = section.axial_damping;
   const bool damped = ca > 0.0;

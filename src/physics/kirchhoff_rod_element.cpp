@@ -19,9 +19,9 @@ namespace {
 using namespace rod_detail;
 
 template <class T>
-std::array<T, 14> to_array(const Vec14& e) {
-  std::array<T, 14> out;
-  for (int i = 0; i < 14; ++i) {
+std::array<T, 15> to_array(const Vec15& e) {
+  std::array<T, 15> out;
+  for (int i = 0; i < 15; ++i) {
     if constexpr (std::is_same_v<T, double>)
       out[i] = e[i];
     else
@@ -55,10 +55,10 @@ Mat3 rod_material_triad(const Mat3& reference, const Vec3& t, double alpha) {
   return out;
 }
 
-Eigen::Matrix2d rod_twist_mass(double polar_inertia, double length) {
-  Eigen::Matrix2d m;
-  m << 2.0, 1.0, 1.0, 2.0;
-  return (polar_inertia * length / 6.0) * m;
+Mat3 rod_twist_mass(double polar_inertia, double length) {
+  Mat3 m;
+  m << 10.0, 5.0, 10.0, 5.0, 10.0, 10.0, 10.0, 10.0, 16.0;  // 30 ∫ N Nᵀ dξ
+  return (polar_inertia * length / 30.0) * m;
 }
 
 RodElementReference RodElementReference::from_reference(const Vec12& e0, double length,
@@ -99,7 +99,7 @@ RodElementReference RodElementReference::from_reference(const Vec12& e0, double 
     if (!(a.norm() > 0.0)) throw ModelError("Kirchhoff rod element: vanishing reference slope");
     ref.collocation_inv_j0[c] = 1.0 / a.norm();
   }
-  Vec14 e = Vec14::Zero();
+  Vec15 e = Vec15::Zero();
   e.head<12>() = e0;
   history.omega = 0.0;
   const auto x = to_array<double>(e);
@@ -113,7 +113,7 @@ RodElementReference RodElementReference::from_reference(const Vec12& e0, double 
 }
 
 RodPointState rod_point_state(const RodElementReference& ref, const RodElementHistory& history,
-                              const Vec14& e, double xi) {
+                              const Vec15& e, double xi) {
   const Vec4 d1 = hermite::first_derivative(xi, ref.length);
   Vec3 a0 = Vec3::Zero();
   for (int k = 0; k < 4; ++k) a0 += d1[k] * ref.e0.segment<3>(3 * k);
@@ -151,16 +151,16 @@ RodMomentLoad rod_end_moment(const Mat3& reference, const Vec3& t, const Vec3& m
   return out;
 }
 
-double rod_element_omega(const RodElementHistory& history, const Vec14& e) {
+double rod_element_omega(const RodElementHistory& history, const Vec15& e) {
   return element_frame(history, to_array<double>(e)).omega;
 }
 
 namespace {
 
-// The original kernel: jets in all 14 element coordinates through every operation.
+// The original kernel: jets in all 15 element coordinates through every operation.
 void evaluate_with_element_jets(const RodSection& section, const RodElementReference& ref,
-                                const RodElementHistory& history, const Vec14& e,
-                                const Vec14& e_dot, const RodEvalRequest& request,
+                                const RodElementHistory& history, const Vec15& e,
+                                const Vec15& e_dot, const RodEvalRequest& request,
                                 RodElementResult& out) {
   const std::array<double, 4> stiff{section.axial_stiffness, section.torsional_stiffness,
                                     section.bending_stiffness_2, section.bending_stiffness_3};
@@ -186,12 +186,12 @@ void evaluate_with_element_jets(const RodSection& section, const RodElementRefer
         if (damping && damp[k] > 0.0) rate = s[k].g.dot(e_dot);
         const double sigma = stiff[k] * d + damp[k] * rate;  // stress resultant of strain k
         out.force.noalias() += (w * sigma) * s[k].g;
-        if constexpr (std::is_same_v<J, Jet<14, true>>) {
+        if constexpr (std::is_same_v<J, Jet<15, true>>) {
           if (request.stiffness) {
             out.stiffness.noalias() += (w * stiff[k]) * s[k].g * s[k].g.transpose();
             out.stiffness.noalias() += (w * sigma) * s[k].h;
             if (damping && damp[k] > 0.0) {
-              const Vec14 he = s[k].h * e_dot;  // ∂(c ṡ)/∂e = c (H ė)ᵀ
+              const Vec15 he = s[k].h * e_dot;  // ∂(c ṡ)/∂e = c (H ė)ᵀ
               out.stiffness.noalias() += (w * damp[k]) * s[k].g * he.transpose();
             }
           }
@@ -202,15 +202,15 @@ void evaluate_with_element_jets(const RodSection& section, const RodElementRefer
     }
   };
   if (request.stiffness)
-    run(Jet<14, true>{});
+    run(Jet<15, true>{});
   else
-    run(Jet<14, false>{});
+    run(Jet<15, false>{});
 }
 
 }  // namespace
 
 void evaluate_rod_element(const RodSection& section, const RodElementReference& ref,
-                          const RodElementHistory& history, const Vec14& e, const Vec14& e_dot,
+                          const RodElementHistory& history, const Vec15& e, const Vec15& e_dot,
                           const RodEvalRequest& request, RodElementResult& out) {
   out.energy = 0.0;
   out.force.setZero();

@@ -1,18 +1,19 @@
 // The Kirchhoff rod's force, tangent and damping matrix by a two-level chain rule
 // (RodKernel::local_chain; docs/rod.md, "Derivatives"). The strains at a Gauss point depend on
-// the 14 element coordinates only through 11 local variables
-//   y = (b = r_xx, a = r_x, t₁, α₁, ζ) ∈ R¹¹,
+// the 15 element coordinates only through 12 local variables
+//   y = (b = r_xx, a = r_x, t₁, α₁, ζ, β) ∈ R¹²,
 // all linear in e except ζ = α₂ + ω(t₁, t₂). So with B = ∂y/∂e (the point's Hermite
-// derivatives, identities, and ∇ζ as last row) and H_ζ = ∂²ζ/∂e² (on t₁, t₂ only):
+// derivatives, identities, and ∇ζ as a row) and H_ζ = ∂²ζ/∂e² (on t₁, t₂ only):
 //   ∇ₑs = Bᵀ∇_y s,   ∇ₑ²s = Bᵀ(∇_y² s)B + (∂s/∂ζ) H_ζ.
 // Inside a point each intermediate is a jet in only the variables it depends on (3, 6 or 9 of
 // y; the twist ψ by hand), and ω is a jet in (t₁, t₂) once per element, instead of jets in all
-// 14 coordinates through every operation (RodKernel::element_jets). The values use the same
+// 15 coordinates through every operation (RodKernel::element_jets). The values use the same
 // operations as that kernel (kirchhoff_rod_strains.hpp), so energy and strains are bitwise equal
 // and the derivatives agree to round-off (test_kirchhoff_rod_element).
 #include "kirchhoff_rod_local_chain.hpp"
 
 #include <array>
+#include <utility>
 
 #include "ancf/physics/jet.hpp"
 #include "kirchhoff_rod_strains.hpp"
@@ -20,11 +21,11 @@
 namespace ancf::rod_detail {
 namespace {
 
-constexpr int kLocal = 11;
-constexpr int kB = 0, kA = 3, kT1 = 6, kAlpha1 = 9, kZeta = 10;  // offsets in y
+constexpr int kLocal = 12;
+constexpr int kB = 0, kA = 3, kT1 = 6, kAlpha1 = 9, kZeta = 10, kBeta = 11;  // offsets in y
 using LocalVec = Eigen::Matrix<double, kLocal, 1>;
 using LocalMat = Eigen::Matrix<double, kLocal, kLocal>;
-using LocalMap = Eigen::Matrix<double, kLocal, 14>;  // B = ∂y/∂e
+using LocalMap = Eigen::Matrix<double, kLocal, 15>;  // B = ∂y/∂e
 // Element coordinates of (t₁, t₂), the variables of ω's jets.
 constexpr std::array<int, 6> kTangents{3, 4, 5, 9, 10, 11};
 
@@ -57,7 +58,7 @@ struct NodeFrame {
 // element_frame (kirchhoff_rod_strains.hpp) with the same operations, each node's quantities as
 // jets in its own tangent (3 variables) and only SR(Λ̄₁ → t̂₂) and ω in both (6).
 template <bool S>
-NodeFrame<S> staged_element_frame(const RodElementHistory& h, const Vec14& e) {
+NodeFrame<S> staged_element_frame(const RodElementHistory& h, const Vec15& e) {
   using std::sqrt;
   using J3 = Jet<3, S>;
   using J6 = Jet<6, S>;
@@ -133,17 +134,17 @@ V3<Jet<6, S>> cross_of_variables(const V3<double>& a, const V3<double>& b) {
   return {c[0], c[1], c[2]};
 }
 
-// The strains (ε, K₁, K₂, K₃) at a point as jets in y = (b, a, t₁, α₁, ζ). The operations and
+// The strains (ε, K₁, K₂, K₃) at a point as jets in y = (b, a, t₁, α₁, ζ, β). The operations and
 // their order are those of point_strains (kirchhoff_rod_strains.hpp), so the values are bitwise
 // equal; each intermediate is carried as a jet in only the variables it depends on:
 //   |a|, g = a/|a|: a (3);  κ = a × b/|a|²: (b, a) (6);  1/(1 + t̂₁·g), SR columns: (a, t₁) (6);
 //   κ·d₂, κ·d₃, (t̂₁·κ)/(1 + t̂₁·g): (b, a, t₁) (9).
-// The twist ψ = (1 − ξ)α₁ + ξζ enters through cos ψ, sin ψ, differentiated here by hand:
+// The twist ψ = (1 − ξ)α₁ + ξζ + 4ξ(1 − ξ)β enters through cos ψ, sin ψ, by hand:
 //   K₂ = (c k₂ + s k₃)/J₀, ∂K₂/∂ψ = K₃;  K₃ = (c k₃ − s k₂)/J₀, ∂K₃/∂ψ = −K₂.
 template <bool S>
 std::array<Jet<kLocal, S>, 4> staged_point_strains(const PointData& pd, const NodeFrame<S>& f,
                                                    const V3<double>& ad, const V3<double>& bd,
-                                                   double alpha1, double zeta) {
+                                                   double alpha1, double zeta, double beta) {
   using std::sqrt;
   using J3 = Jet<3, S>;
   using J6 = Jet<6, S>;
@@ -168,9 +169,9 @@ std::array<Jet<kLocal, S>, 4> staged_point_strains(const PointData& pd, const No
   const J9 k2 = mixed_dot<9, 0, 3>(kappa, g2), k3 = mixed_dot<9, 0, 3>(kappa, g3);
   const J9 sr_twist = mixed_dot<9, 3, 0>(t1_at, kappa) * promote<9>(ic, 3);
   // the twist, by hand
-  const double psi = (1.0 - xi) * alpha1 + xi * zeta;
+  const double psi = twist_angle(xi, alpha1, zeta, beta);
   const double c = std::cos(psi), s = std::sin(psi);
-  const double k1 = (zeta - alpha1) * (1.0 / pd.length) - sr_twist.v;
+  const double k1 = twist_increment(xi, alpha1, zeta, beta) * (1.0 / pd.length) - sr_twist.v;
   std::array<JL, 4> out;
   out[0].v = na.v * ij - 1.0;
   out[0].g.template segment<3>(kA) = ij * na.g;
@@ -178,6 +179,7 @@ std::array<Jet<kLocal, S>, 4> staged_point_strains(const PointData& pd, const No
   out[1].g.template head<9>() = -ij * sr_twist.g;
   out[1].g[kAlpha1] = -ij / pd.length;
   out[1].g[kZeta] = ij / pd.length;
+  out[1].g[kBeta] = ij * bubble_slope(xi) / pd.length;
   const double kk2 = (c * k2.v + s * k3.v) * ij, kk3 = (c * k3.v - s * k2.v) * ij;
   out[2].v = kk2;
   out[3].v = kk3;
@@ -185,36 +187,37 @@ std::array<Jet<kLocal, S>, 4> staged_point_strains(const PointData& pd, const No
       q3 = -ij * (s * k3.g + c * k2.g);  // ∂²K₃/∂ψ∂(b, a, t₁)
   out[2].g.template head<9>() = ij * (c * k2.g + s * k3.g);
   out[3].g.template head<9>() = ij * (c * k3.g - s * k2.g);
-  out[2].g[kAlpha1] = (1.0 - xi) * kk3;
-  out[2].g[kZeta] = xi * kk3;
-  out[3].g[kAlpha1] = -(1.0 - xi) * kk2;
-  out[3].g[kZeta] = -xi * kk2;
+  // ∂ψ/∂(α₁, ζ, β)
+  const std::array<std::pair<int, double>, 3> twist{
+      {{kAlpha1, 1.0 - xi}, {kZeta, xi}, {kBeta, bubble(xi)}}};
+  for (const auto& [index, p] : twist) {
+    out[2].g[index] = p * kk3;
+    out[3].g[index] = -p * kk2;
+  }
   if constexpr (S) {
     out[0].h.template block<3, 3>(kA, kA) = ij * na.h;
     out[1].h.template topLeftCorner<9, 9>() = -ij * sr_twist.h;
     out[2].h.template topLeftCorner<9, 9>() = ij * (c * k2.h + s * k3.h);
     out[3].h.template topLeftCorner<9, 9>() = ij * (c * k3.h - s * k2.h);
-    const double pa = 1.0 - xi, pz = xi;  // ∂ψ/∂α₁, ∂ψ/∂ζ
     for (int m = 2; m < 4; ++m) {
       const Eigen::Matrix<double, 9, 1>& q = m == 2 ? q2 : q3;
       const double second = m == 2 ? -kk2 : -kk3;  // ∂²K/∂ψ²
       auto& h = out[m].h;
-      h.template block<9, 1>(0, kAlpha1) = pa * q;
-      h.template block<9, 1>(0, kZeta) = pz * q;
-      h.template block<1, 9>(kAlpha1, 0) = pa * q.transpose();
-      h.template block<1, 9>(kZeta, 0) = pz * q.transpose();
-      h(kAlpha1, kAlpha1) = second * pa * pa;
-      h(kAlpha1, kZeta) = h(kZeta, kAlpha1) = second * pa * pz;
-      h(kZeta, kZeta) = second * pz * pz;
+      for (const auto& [i, pi] : twist) {
+        h.template block<9, 1>(0, i) = pi * q;
+        h.template block<1, 9>(i, 0) = pi * q.transpose();
+        for (const auto& [j, pj] : twist) h(i, j) = second * pi * pj;
+      }
     }
   }
   return out;
 }
 
 // B = ∂y/∂e is sparse: column j (centreline coordinate j = 3k + i) holds S_k′ at a_i, S_k″ at
-// b_i and, for k = 1, 1 at t₁ᵢ; column 12 holds 1 at α₁; ∂ζ/∂e_j at ζ. Calls f(row, B(row, j)).
+// b_i and, for k = 1, 1 at t₁ᵢ; column 12 holds 1 at α₁, column 14 1 at β; ∂ζ/∂e_j at ζ. Calls
+// f(row, B(row, j)).
 template <class F>
-void for_map_column(const PointData& pd, const Vec14& zeta_gradient, int j, F&& f) {
+void for_map_column(const PointData& pd, const Vec15& zeta_gradient, int j, F&& f) {
   if (j < 12) {
     const int k = j / 3, i = j % 3;
     f(kA + i, pd.d1[k]);
@@ -222,14 +225,16 @@ void for_map_column(const PointData& pd, const Vec14& zeta_gradient, int j, F&& 
     if (k == 1) f(kT1 + i, 1.0);
   } else if (j == 12) {
     f(kAlpha1, 1.0);
+  } else if (j == 14) {
+    f(kBeta, 1.0);
   }
   if (zeta_gradient[j] != 0.0) f(kZeta, zeta_gradient[j]);
 }
 
 // Bᵀ v
-Vec14 map_transpose_times(const PointData& pd, const Vec14& zg, const LocalVec& v) {
-  Vec14 out;
-  for (int j = 0; j < 14; ++j) {
+Vec15 map_transpose_times(const PointData& pd, const Vec15& zg, const LocalVec& v) {
+  Vec15 out;
+  for (int j = 0; j < 15; ++j) {
     double sum = 0.0;
     for_map_column(pd, zg, j, [&](int r, double beta) { sum += beta * v[r]; });
     out[j] = sum;
@@ -238,27 +243,27 @@ Vec14 map_transpose_times(const PointData& pd, const Vec14& zg, const LocalVec& 
 }
 
 // B u
-LocalVec map_times(const PointData& pd, const Vec14& zg, const Vec14& u) {
+LocalVec map_times(const PointData& pd, const Vec15& zg, const Vec15& u) {
   LocalVec out = LocalVec::Zero();
-  for (int j = 0; j < 14; ++j)
+  for (int j = 0; j < 15; ++j)
     for_map_column(pd, zg, j, [&](int r, double beta) { out[r] += beta * u[j]; });
   return out;
 }
 
 // out += Bᵀ m B
-void add_congruence(const PointData& pd, const Vec14& zg, const LocalMat& m, Mat14& out) {
+void add_congruence(const PointData& pd, const Vec15& zg, const LocalMat& m, Mat15& out) {
   LocalMap mb;  // m B
-  for (int j = 0; j < 14; ++j) {
+  for (int j = 0; j < 15; ++j) {
     mb.col(j).setZero();
     for_map_column(pd, zg, j, [&](int r, double beta) { mb.col(j) += beta * m.col(r); });
   }
-  for (int i = 0; i < 14; ++i)
+  for (int i = 0; i < 15; ++i)
     for_map_column(pd, zg, i, [&](int r, double beta) { out.row(i) += beta * mb.row(r); });
 }
 
 template <bool kSecond>
 void evaluate(const RodSection& section, const RodElementReference& ref,
-              const RodElementHistory& history, const Vec14& e, const Vec14& e_dot,
+              const RodElementHistory& history, const Vec15& e, const Vec15& e_dot,
               const RodEvalRequest& request, RodElementResult& out) {
   const std::array<double, 4> stiff{section.axial_stiffness, section.torsional_stiffness,
                                     section.bending_stiffness_2, section.bending_stiffness_3};
@@ -272,19 +277,19 @@ void evaluate(const RodSection& section, const RodElementReference& ref,
   // Element frame: node 1's triad in t₁, ζ = α₂ + ω in (t₁, t₂) (α₂ enters linearly).
   const NodeFrame<kSecond> frame = staged_element_frame<kSecond>(history, e);
   const Jet<6, kSecond>& zeta = frame.zeta;
-  Vec14 zeta_gradient = Vec14::Zero();
+  Vec15 zeta_gradient = Vec15::Zero();
   for (int i = 0; i < 6; ++i) zeta_gradient[kTangents[i]] = zeta.g[i];
   zeta_gradient[13] = 1.0;
 
-  std::array<double, 14> x;
-  for (int i = 0; i < 14; ++i) x[i] = e[i];
+  std::array<double, 15> x;
+  for (int i = 0; i < 15; ++i) x[i] = e[i];
   double zeta_stress = 0.0;            // Σ w σ_k ∂s_k/∂ζ, multiplies H_ζ
-  Vec14 zeta_damping = Vec14::Zero();  // Σ w c_k (∂s_k/∂ζ) ∇ₑs_k, times (H_ζ ė)ᵀ
+  Vec15 zeta_damping = Vec15::Zero();  // Σ w c_k (∂s_k/∂ζ) ∇ₑs_k, times (H_ζ ė)ᵀ
   for (int p = 0; p < kRodGaussPoints; ++p) {
     const PointData pd = point_data(ref, p);
     V3<double> a, b;
     centreline_derivatives(pd, x, a, b);
-    const auto s = staged_point_strains(pd, frame, a, b, e[12], zeta.v);
+    const auto s = staged_point_strains(pd, frame, a, b, e[12], zeta.v, e[14]);
     const LocalVec y_dot = damping ? map_times(pd, zeta_gradient, e_dot) : LocalVec::Zero();
     const double w = ref.weight[p];
     if (p == kRodGaussPoints / 2) out.strain_mid = Vec3(s[1].v, s[2].v, s[3].v);
@@ -341,7 +346,7 @@ void evaluate(const RodSection& section, const RodElementReference& ref,
 }  // namespace
 
 void evaluate_with_local_chain(const RodSection& section, const RodElementReference& ref,
-                               const RodElementHistory& history, const Vec14& e, const Vec14& e_dot,
+                               const RodElementHistory& history, const Vec15& e, const Vec15& e_dot,
                                const RodEvalRequest& request, RodElementResult& out) {
   if (request.stiffness)
     evaluate<true>(section, ref, history, e, e_dot, request, out);

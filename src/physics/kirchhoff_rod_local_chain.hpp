@@ -8,7 +8,7 @@ namespace ancf::rod_detail {
 
 // Adds to out (zeroed by the caller).
 void evaluate_with_local_chain(const RodSection& section, const RodElementReference& ref,
-                               const RodElementHistory& history, const Vec14& e, const Vec14& e_dot,
+                               const RodElementHistory& history, const Vec15& e, const Vec15& e_dot,
                                const RodEvalRequest& request, RodElementResult& out);
 
 }  // namespace ancf::rod_detail

@@ -66,7 +66,7 @@ T checked_inverse_denominator(const T& denominator, const char* where) {
 }
 
 template <class T>
-V3<T> block(const std::array<T, 14>& e, int k) {
+V3<T> block(const std::array<T, 15>& e, int k) {
   return {e[3 * k], e[3 * k + 1], e[3 * k + 2]};
 }
 
@@ -104,7 +104,7 @@ ElementFrame<T> element_frame(const RodElementHistory& h, const V3<T>& t1, const
 }
 
 template <class T>
-ElementFrame<T> element_frame(const RodElementHistory& h, const std::array<T, 14>& e) {
+ElementFrame<T> element_frame(const RodElementHistory& h, const std::array<T, 15>& e) {
   return element_frame(h, block(e, 1), block(e, 3), e[13]);
 }
 
@@ -126,7 +126,7 @@ struct PointTriad {
 
 // r_x (a) and r_xx (b) at a point: Σ_k S_k′ x_k, Σ_k S_k″ x_k over the four centreline blocks.
 template <class T>
-void centreline_derivatives(const PointData& pd, const std::array<T, 14>& e, V3<T>& a, V3<T>& b) {
+void centreline_derivatives(const PointData& pd, const std::array<T, 15>& e, V3<T>& a, V3<T>& b) {
   a = scale(pd.d1[0], block(e, 0));
   b = scale(pd.d2[0], block(e, 0));
   for (int k = 1; k < 4; ++k) {
@@ -135,10 +135,28 @@ void centreline_derivatives(const PointData& pd, const std::array<T, 14>& e, V3<
   }
 }
 
-// Strains (ε, K₁, K₂, K₃) at a point from r_x = a, r_xx = b, the element frame and α₁.
+// The twist ψ(ξ) = (1 − ξ)α₁ + ξζ + 4ξ(1 − ξ)β and l ψ_x = ζ − α₁ + 4(1 − 2ξ)β (one expression
+// for every scalar type, so that the kernels' values are bitwise equal; β = 0 adds exact zeros).
+inline double bubble(double xi) {
+  return 4.0 * xi * (1.0 - xi);
+}
+inline double bubble_slope(double xi) {
+  return 4.0 * (1.0 - 2.0 * xi);
+}
+template <class T>
+T twist_angle(double xi, const T& alpha1, const T& zeta, const T& beta) {
+  return (1.0 - xi) * alpha1 + xi * zeta + bubble(xi) * beta;
+}
+template <class T>
+T twist_increment(double xi, const T& alpha1, const T& zeta, const T& beta) {
+  return zeta - alpha1 + bubble_slope(xi) * beta;
+}
+
+// Strains (ε, K₁, K₂, K₃) at a point from r_x = a, r_xx = b, the element frame, α₁ and β.
 template <class T>
 std::array<T, 4> point_strains(const PointData& pd, const ElementFrame<T>& f, const V3<T>& a,
-                               const V3<T>& b, const T& alpha1, PointTriad<T>* triad = nullptr) {
+                               const V3<T>& b, const T& alpha1, const T& beta,
+                               PointTriad<T>* triad = nullptr) {
   using std::cos;
   using std::sin;
   using std::sqrt;
@@ -150,10 +168,11 @@ std::array<T, 4> point_strains(const PointData& pd, const ElementFrame<T>& f, co
   const T ic = checked_inverse_denominator(1.0 + dot(f.t1, g), "centreline tangent");
   const V3<T> g2 = sr_column(f.t1, f.n2, g, ic), g3 = sr_column(f.t1, f.n3, g, ic);
   const T k2 = dot(kappa, g2), k3 = dot(kappa, g3);
-  const T psi = (1.0 - xi) * alpha1 + xi * f.zeta;
+  const T psi = twist_angle(xi, alpha1, f.zeta, beta);
   const T c = cos(psi), s = sin(psi);
   // K₁: ψ_x plus the twist rate of the SR frame, −(t̂₁·κ)/(1 + t̂₁·g₁).
-  const T k1 = (f.zeta - alpha1) * (1.0 / pd.length) - dot(f.t1, kappa) * ic;
+  const T k1 =
+      twist_increment(xi, alpha1, f.zeta, beta) * (1.0 / pd.length) - dot(f.t1, kappa) * ic;
   if (triad) *triad = {g, scale(c, g2) + scale(s, g3), scale(c, g3) - scale(s, g2)};
   return {na * ij - 1.0, k1 * ij, (c * k2 + s * k3) * ij, (c * k3 - s * k2) * ij};
 }
@@ -161,10 +180,10 @@ std::array<T, 4> point_strains(const PointData& pd, const ElementFrame<T>& f, co
 // The same from the element coordinates.
 template <class T>
 std::array<T, 4> point_strains(const PointData& pd, const ElementFrame<T>& f,
-                               const std::array<T, 14>& e, PointTriad<T>* triad = nullptr) {
+                               const std::array<T, 15>& e, PointTriad<T>* triad = nullptr) {
   V3<T> a, b;
   centreline_derivatives(pd, e, a, b);
-  return point_strains(pd, f, a, b, e[12], triad);
+  return point_strains(pd, f, a, b, e[12], e[14], triad);
 }
 
 }  // namespace ancf::rod_detail

@@ -559,10 +559,12 @@ double kinetic_energy(const Model& model, const VecX& v) {
     for (Index j = 0; j < static_cast<Index>(c.elements.size()); ++j)
       add(c.mass[j], c.first_coordinate + 6 * j);
   for (const BodyData& b : model.bodies()) add(b.mass, b.first_coordinate);
-  for (const CableData& c : model.cables())  // twist inertia ½ α̇ᵀ M_α α̇
+  for (const CableData& c : model.cables())  // twist inertia ½ ẇᵀ M_α ẇ, w = (α_j, α_j+1, β_j)
     if (c.rod)
       for (Index j = 0; j + 1 < c.node_count; ++j) {
-        const Eigen::Vector2d w = v.segment<2>(c.rod->twist_first + j);
+        const int n = c.rod->element_coordinates() - 12;
+        Vec3 w = Vec3::Zero();
+        for (int k = 0; k < n; ++k) w[k] = v[c.rod_coordinate(j, 12 + k)];
         t += 0.5 * w.dot(c.rod->twist_mass[j] * w);
       }
   return t;

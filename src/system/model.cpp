@@ -27,6 +27,10 @@ std::string Model::describe_row(Index row) const {
         return "cable '" + c.name + "' node " + std::to_string(local / 6) + " " + kNode[local % 6];
       if (c.rod && row >= c.rod->twist_first && row < c.rod->twist_first + c.node_count)
         return "rod '" + c.name + "' node " + std::to_string(row - c.rod->twist_first) + " twist";
+      if (c.rod && c.rod->interior_first >= 0 && row >= c.rod->interior_first &&
+          row < c.rod->interior_first + c.node_count - 1)
+        return "rod '" + c.name + "' element " + std::to_string(row - c.rod->interior_first) +
+               " interior twist";
     }
     for (const BodyData& b : bodies_) {
       const Index local = row - b.first_coordinate;

@@ -136,6 +136,7 @@ RodData ModelBuilder::make_rod_data(const PendingCable& pc, const CableData& c, 
   RodData d;
   d.section = *pc.rod;
   d.twist_first = twist_first;
+  if (pc.rod->twist == RodTwist::quadratic) d.interior_first = twist_first + c.node_count;
   d.reference_frames = pc.frames;
   for (Index j = 0; j < pc.reference.element_count(); ++j) {
     RodElementHistory h{pc.frames[j], pc.frames[j + 1], 0.0};

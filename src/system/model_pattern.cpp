@@ -14,11 +14,13 @@ void visit_cable_block(Index base, Visit&& visit) {
     for (Index r = 0; r < 12; ++r) visit(base + r, base + col);
 }
 
-// The 14×14 block of rod element j (centreline block and the two twist angles), column-major.
+// The n×n block of rod element j (centreline block, the two twist angles and, quadratic, the
+// interior twist), column-major.
 template <class Visit>
 void visit_rod_block(const CableData& c, Index j, Visit&& visit) {
-  for (int col = 0; col < 14; ++col)
-    for (int r = 0; r < 14; ++r) visit(c.rod_coordinate(j, r), c.rod_coordinate(j, col));
+  const int n = c.rod->element_coordinates();
+  for (int col = 0; col < n; ++col)
+    for (int r = 0; r < n; ++r) visit(c.rod_coordinate(j, r), c.rod_coordinate(j, col));
 }
 
 template <class Visit>

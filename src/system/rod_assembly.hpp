@@ -9,7 +9,7 @@
 
 namespace ancf::detail {
 
-// Visit every rod element with its 14 coordinates and velocities.
+// Visit every rod element with its 15 coordinates and velocities (β = 0 for a linear twist).
 template <class Visitor>
 void for_each_rod_element(const Model& model, const VecX& q, const VecX& v, Visitor&& visit) {
   for (Index ci = 0; ci < static_cast<Index>(model.cables().size()); ++ci) {
@@ -17,10 +17,10 @@ void for_each_rod_element(const Model& model, const VecX& q, const VecX& v, Visi
     if (!c.rod) continue;
     const bool damping = c.rod->section.has_damping();
     for (Index j = 0; j < static_cast<Index>(c.elements.size()); ++j) {
-      const Vec14 e = rod_element_coordinates(c, j, as_span(q));
-      const Vec14 e_dot = damping && v.size() == q.size()
+      const Vec15 e = rod_element_coordinates(c, j, as_span(q));
+      const Vec15 e_dot = damping && v.size() == q.size()
                               ? rod_element_coordinates(c, j, as_span(v))
-                              : Vec14(Vec14::Zero());
+                              : Vec15(Vec15::Zero());
       visit(ci, j, c, e, e_dot);
     }
   }
@@ -30,24 +30,27 @@ void for_each_rod_element(const Model& model, const VecX& q, const VecX& v, Visi
 // moments. `inertia`: a holds accelerations.
 inline void add_rod_residual(const Model& model, const SystemState& state, double load_factor,
                              bool inertia, Workspace& ws, Eigen::Map<VecX>& r) {
-  for_each_rod_element(model, state.q, state.v,
-                       [&](Index ci, Index j, const CableData& c, const Vec14& e, const Vec14& ed) {
-                         evaluate_rod_element(c.rod->section, c.rod->elements[j],
-                                              ws.rods.element(ci, j), e, ed, {}, ws.rod);
-                         for (int i = 0; i < 14; ++i) r[c.rod_coordinate(j, i)] += ws.rod.force[i];
-                         const Index base = c.first_coordinate + 6 * j;
-                         const Mat4& m4 = c.mass[j];
-                         const Index tw = c.rod->twist_first + j;
-                         auto add_m = [&](const VecX& x, double s) {
-                           for (int p = 0; p < 4; ++p)
-                             for (int k = 0; k < 4; ++k)
-                               r.segment<3>(base + 3 * p) +=
-                                   s * m4(p, k) * x.segment<3>(base + 3 * k);
-                           r.segment<2>(tw) += s * (c.rod->twist_mass[j] * x.segment<2>(tw));
-                         };
-                         if (inertia) add_m(state.a, 1.0);
-                         if (c.section.mass_damping > 0.0) add_m(state.v, c.section.mass_damping);
-                       });
+  for_each_rod_element(
+      model, state.q, state.v,
+      [&](Index ci, Index j, const CableData& c, const Vec15& e, const Vec15& ed) {
+        evaluate_rod_element(c.rod->section, c.rod->elements[j], ws.rods.element(ci, j), e, ed, {},
+                             ws.rod);
+        const int n = c.rod->element_coordinates();
+        for (int i = 0; i < n; ++i) r[c.rod_coordinate(j, i)] += ws.rod.force[i];
+        const Index base = c.first_coordinate + 6 * j;
+        const Mat4& m4 = c.mass[j];
+        const Mat3& mt = c.rod->twist_mass[j];
+        auto add_m = [&](const VecX& x, double s) {
+          for (int p = 0; p < 4; ++p)
+            for (int k = 0; k < 4; ++k)
+              r.segment<3>(base + 3 * p) += s * m4(p, k) * x.segment<3>(base + 3 * k);
+          for (int p = 12; p < n; ++p)
+            for (int k = 12; k < n; ++k)
+              r[c.rod_coordinate(j, p)] += s * mt(p - 12, k - 12) * x[c.rod_coordinate(j, k)];
+        };
+        if (inertia) add_m(state.a, 1.0);
+        if (c.section.mass_damping > 0.0) add_m(state.v, c.section.mass_damping);
+      });
   for (const RodMomentData& d : model.rod_moments()) {
     const Index t = d.coordinates[0];
     const RodMomentLoad load =
@@ -64,16 +67,19 @@ void add_rod_matrix(const Model& model, const SystemState& state, const Iteratio
   const RodEvalRequest request{.stiffness = w.w_q != 0.0, .damping_matrix = w.w_v != 0.0};
   for_each_rod_element(
       model, state.q, state.v,
-      [&](Index ci, Index j, const CableData& c, const Vec14& e, const Vec14& ed) {
+      [&](Index ci, Index j, const CableData& c, const Vec15& e, const Vec15& ed) {
         const auto& slots = c.rod->slots[j];
+        const int n = c.rod->element_coordinates();
         const bool damping = request.damping_matrix && c.rod->section.has_damping();
         if (request.stiffness || damping) {
           evaluate_rod_element(c.rod->section, c.rod->elements[j], ws.rods.element(ci, j), e, ed,
                                request, ws.rod);
-          for (int k = 0; k < 196; ++k) {
-            if (request.stiffness) t.position(slots[k]) += w.w_q * ws.rod.stiffness.data()[k];
-            if (damping) t.velocity(slots[k]) += w.w_v * ws.rod.damping.data()[k];
-          }
+          for (int col = 0; col < n; ++col)
+            for (int row = 0; row < n; ++row) {
+              const Index slot = slots[n * col + row];
+              if (request.stiffness) t.position(slot) += w.w_q * ws.rod.stiffness(row, col);
+              if (damping) t.velocity(slot) += w.w_v * ws.rod.damping(row, col);
+            }
         }
         const double wm = w.w_a + w.w_v * c.section.mass_damping;
         if (wm == 0.0) return;
@@ -81,10 +87,10 @@ void add_rod_matrix(const Model& model, const SystemState& state, const Iteratio
         for (int s = 0; s < 4; ++s)
           for (int p = 0; p < 4; ++p)
             for (int d = 0; d < 3; ++d)
-              t.velocity(slots[14 * (3 * s + d) + 3 * p + d]) += wm * m4(p, s);
-        for (int s = 0; s < 2; ++s)
-          for (int p = 0; p < 2; ++p)
-            t.velocity(slots[14 * (12 + s) + 12 + p]) += wm * c.rod->twist_mass[j](p, s);
+              t.velocity(slots[n * (3 * s + d) + 3 * p + d]) += wm * m4(p, s);
+        for (int s = 12; s < n; ++s)
+          for (int p = 12; p < n; ++p)
+            t.velocity(slots[n * s + p]) += wm * c.rod->twist_mass[j](p - 12, s - 12);
       });
   if (w.w_q == 0.0) return;
   for (const RodMomentData& d : model.rod_moments()) {
@@ -103,10 +109,10 @@ inline double rod_strain_energy(const Model& model, const VecX& q, const RodHist
   double u = 0.0;
   RodElementResult res;
   for_each_rod_element(
-      model, q, q, [&](Index ci, Index j, const CableData& c, const Vec14& e, const Vec14&) {
+      model, q, q, [&](Index ci, Index j, const CableData& c, const Vec15& e, const Vec15&) {
         RodSection elastic = c.rod->section;
         elastic.axial_damping = elastic.torsional_damping = elastic.bending_damping = 0.0;
-        evaluate_rod_element(elastic, c.rod->elements[j], history.element(ci, j), e, Vec14::Zero(),
+        evaluate_rod_element(elastic, c.rod->elements[j], history.element(ci, j), e, Vec15::Zero(),
                              {}, res);
         u += res.energy;
       });

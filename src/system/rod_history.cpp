@@ -13,9 +13,11 @@ RodHistory RodHistory::initial(const Model& model) {
   return h;
 }
 
-Vec14 rod_element_coordinates(const CableData& cable, Index j, std::span<const double> q) {
-  Vec14 e;
-  for (int i = 0; i < 14; ++i) e[i] = q[cable.rod_coordinate(j, i)];
+Vec15 rod_element_coordinates(const CableData& cable, Index j, std::span<const double> q) {
+  Vec15 e;
+  const int n = cable.rod->element_coordinates();
+  for (int i = 0; i < n; ++i) e[i] = q[cable.rod_coordinate(j, i)];
+  if (n < 15) e[14] = 0.0;  // linear twist: β ≡ 0
   return e;
 }
 

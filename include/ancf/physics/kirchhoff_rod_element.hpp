@@ -2,16 +2,19 @@
 // twist angle per node, carrying a material frame (docs/rod.md). After Meier, Popp & Wall,
 // "An objective 3D large deformation finite element formulation for geometrically exact curved
 // Kirchhoff rods", CMAME 278 (2014) 445–478, tangent-based nodal parametrisation ("TAN"), with the
-// triad field interpolated from node 1 by the smallest rotation (SR) and a linear twist angle.
+// triad field interpolated from node 1 by the smallest rotation (SR) and a quadratic twist angle
+// (Meier et al.'s three twist collocation points, here as a hierarchical bubble).
 //
-// Element coordinates e = [r₁, t₁, r₂, t₂, α₁, α₂] ∈ R¹⁴ (r in m, t = r_x dimensionless, α in rad).
+// Element coordinates e = [r₁, t₁, r₂, t₂, α₁, α₂, β] ∈ R¹⁵ (r in m, t = r_x dimensionless, α and
+// the element's interior twist β in rad).
 // Each node i keeps a committed untwisted reference triad R_i (history, columns [tangent, d₂, d₃]);
 // its material triad is Λ_i = Rot_{t̂ᵢ}(αᵢ) · SR(R_i → t̂ᵢ). Inside the element
 //   Λ(ξ) = Rot_{g₁}(ψ(ξ)) · SR(Λ̄₁ → g₁(ξ)),  g₁ = r_x/|r_x|,  Λ̄₁ = SR(R₁ → t̂₁),
-//   ψ(ξ) = (1 − ξ) α₁ + ξ (α₂ + ω),
+//   ψ(ξ) = (1 − ξ) α₁ + ξ (α₂ + ω) + 4ξ(1 − ξ) β,
 // where ω is the angle about t̂₂ from SR(Λ̄₁ → t̂₂) to Λ̄₂ = SR(R₂ → t̂₂), tracked continuously from
 // its committed value ω_c (no ±π wrap). So Λ(0) = Λ₁ and Λ(1) = Λ₂: the frame is continuous
-// across elements. Strains per unit reference arc length s (J₀ = |r⁰_x|, κ = r_x × r_xx/|r_x|²):
+// across elements; β = 0 is the linear twist (RodTwist::linear gives β no coordinate). Strains per
+// unit reference arc length s (J₀ = |r⁰_x|, κ = r_x × r_xx/|r_x|²):
 //   ε = |r_x|/J₀ − 1,  K₁ = [ψ_x − (t̂₁·κ)/(1 + t̂₁·g₁)]/J₀,  K₂ = κ·g₂/J₀,  K₃ = κ·g₃/J₀,
 // energy U = ∫ ½[EA ε² + GJ (K₁−K₁⁰)² + EI₂ (K₂−K₂⁰)² + EI₃ (K₃−K₃⁰)²] J₀ dx with K⁰ the same
 // formulas at the reference configuration and reference triads (exactly stress-free).
@@ -25,8 +28,10 @@
 
 namespace ancf {
 
-using Vec14 = Eigen::Matrix<double, 14, 1>;
-using Mat14 = Eigen::Matrix<double, 14, 14>;
+/// Coordinates of a rod element (with the interior twist β last).
+inline constexpr int kRodElementCoordinates = 15;
+using Vec15 = Eigen::Matrix<double, kRodElementCoordinates, 1>;
+using Mat15 = Eigen::Matrix<double, kRodElementCoordinates, kRodElementCoordinates>;
 
 /// Gauss points per rod element (4, as 4C's beam3k: exact for the linearised straight element).
 inline constexpr int kRodGaussPoints = 4;
@@ -43,6 +48,17 @@ enum class RodAxialStrain {
   collocated,
 };
 
+/// How the twist angle ψ is interpolated along an element.
+enum class RodTwist {
+  /// ψ = (1 − ξ)α₁ + ξ(α₂ + ω): no interior coordinate. The twist rate is constant per element,
+  /// which limits bending–torsion coupling on curved rods to O(h²) (docs/rod.md).
+  linear,
+  /// Plus the bubble 4ξ(1 − ξ)β with one interior twist coordinate β per element: the same
+  /// polynomial space as the quadratic Lagrange twist of Meier, Popp & Wall (2014) and 4C's BEAM3K
+  /// (three collocation points), the degree of the centreline's tangent. The default.
+  quadratic,
+};
+
 /// Section data of a rod (all elements of a rod share it). Units SI.
 struct RodSection {
   double axial_stiffness = 0.0;      ///< EA [N]
@@ -55,6 +71,7 @@ struct RodSection {
   double torsional_damping = 0.0;    ///< c_t [N m² s]: torque c_t K̇₁
   double bending_damping = 0.0;      ///< c_b [N m² s]: bending moments c_b K̇₂, c_b K̇₃
   RodAxialStrain axial_strain = RodAxialStrain::collocated;
+  RodTwist twist = RodTwist::quadratic;
   [[nodiscard]] bool has_damping() const {
     return axial_damping > 0.0 || torsional_damping > 0.0 || bending_damping > 0.0;
   }
@@ -92,10 +109,10 @@ struct RodElementReference {
 /// How the element's derivatives are formed; both are exact and agree to round-off (the values,
 /// energy and strains are bitwise the same).
 enum class RodKernel {
-  /// Per Gauss point, jets in the 11 local variables (r_x, r_xx, t₁, α₁, ζ) chained to the
+  /// Per Gauss point, jets in the 12 local variables (r_x, r_xx, t₁, α₁, ζ, β) chained to the
   /// element coordinates by the point's linear map B and ζ's Hessian: K = Σ Bᵀ H B + c_ζ H_ζ.
   local_chain,
-  /// Jets in all 14 element coordinates through every operation (the original kernel, kept for
+  /// Jets in all 15 element coordinates through every operation (the original kernel, kept for
   /// comparison: test_kirchhoff_rod_element, bench_rod_element).
   element_jets,
 };
@@ -109,9 +126,9 @@ struct RodEvalRequest {
 /// Sign convention as the cable's: f = ∂U/∂e plus the damping force (M q'' + f = Q).
 struct RodElementResult {
   double energy = 0.0;  ///< U [J]
-  Vec14 force;
-  Mat14 stiffness;  ///< valid if requested
-  Mat14 damping;    ///< valid if requested and the section has damping
+  Vec15 force;
+  Mat15 stiffness;  ///< valid if requested
+  Mat15 damping;    ///< valid if requested and the section has damping
   Vec3 strain_mid;  ///< (K₁, K₂, K₃) at the Gauss point nearest ξ = ½ (diagnostics) [1/m]
 };
 
@@ -119,7 +136,7 @@ struct RodElementResult {
 /// when a tangent turns against its smallest-rotation source (1 + t̂·R₁ ≤ 10⁻⁸): the step is too
 /// large for the committed history or the mesh too coarse (a recoverable "not evaluable here").
 void evaluate_rod_element(const RodSection& section, const RodElementReference& ref,
-                          const RodElementHistory& history, const Vec14& e, const Vec14& e_dot,
+                          const RodElementHistory& history, const Vec15& e, const Vec15& e_dot,
                           const RodEvalRequest& request, RodElementResult& out);
 
 /// Material triad and strains at a point ξ ∈ [0, 1] of the element (diagnostics, outputs, tests).
@@ -129,11 +146,11 @@ struct RodPointState {
   Vec3 curvature;       ///< (K₁, K₂, K₃) [1/m] (not minus the reference's)
 };
 [[nodiscard]] RodPointState rod_point_state(const RodElementReference& ref,
-                                            const RodElementHistory& history, const Vec14& e,
+                                            const RodElementHistory& history, const Vec15& e,
                                             double xi);
 
 /// The current ω of an element (continuous from history.omega), for committing history.
-[[nodiscard]] double rod_element_omega(const RodElementHistory& history, const Vec14& e);
+[[nodiscard]] double rod_element_omega(const RodElementHistory& history, const Vec15& e);
 
 /// SR(R → t̂): the triad obtained from R by the smallest rotation taking its first column onto
 /// t/|t|. Precondition: t ≠ 0 and not antiparallel to R's first column.
@@ -154,9 +171,10 @@ struct RodMomentLoad {
 [[nodiscard]] RodMomentLoad rod_end_moment(const Mat3& reference, const Vec3& t,
                                            const Vec3& moment);
 
-/// Consistent twist inertia of one element for the linear ψ: ρJ_p l/6 [[2, 1], [1, 2]] on
-/// (α₁, α₂). Neglects the angular rate of the smallest-rotation frame itself (which vanishes at
-/// the committed state; docs/rod.md).
-[[nodiscard]] Eigen::Matrix2d rod_twist_mass(double polar_inertia, double length);
+/// Consistent twist inertia of one element, ρJ_p l ∫ N Nᵀ dξ with N = (1 − ξ, ξ, 4ξ(1 − ξ)), on
+/// (α₁, α₂, β): ρJ_p l [[1/3, 1/6, 1/3], [1/6, 1/3, 1/3], [1/3, 1/3, 8/15]] (its upper-left 2×2 is
+/// the linear twist's). Neglects the angular rate of the smallest-rotation frame itself (which
+/// vanishes at the committed state; docs/rod.md).
+[[nodiscard]] Mat3 rod_twist_mass(double polar_inertia, double length);
 
 }  // namespace ancf

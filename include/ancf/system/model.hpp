@@ -22,16 +22,25 @@
 namespace ancf {
 
 /// The twist part of a cable of the Kirchhoff rod kind (kirchhoff_rod_element.hpp, docs/rod.md).
-/// Node k's twist angle α_k is coordinate twist_first + k; the twist block [twist_first, … + N)
-/// lies directly in front of the cable's centreline block.
+/// Node k's twist angle α_k is coordinate twist_first + k; with the quadratic twist, element j's
+/// interior twist β_j is interior_first + j = twist_first + N + j. The twist block
+/// [twist_first, … + N (+ N − 1)) lies directly in front of the cable's centreline block.
 struct RodData {
   RodSection section;
   Index twist_first = 0;
+  Index interior_first = -1;  ///< −1: linear twist (RodTwist::linear), no β coordinates
   std::vector<RodElementReference> elements;
-  std::vector<Eigen::Matrix2d> twist_mass;  ///< per element, on (α_j, α_j+1)
-  std::vector<Mat3> reference_frames;       ///< per node: material triad of the reference (α = 0)
-  std::vector<double> reference_omega;      ///< per element: ω of the reference
-  std::vector<std::array<Index, 196>> slots;  ///< per element, column-major over 14×14
+  std::vector<Mat3> twist_mass;         ///< per element, on (α_j, α_j+1, β_j)
+  std::vector<Mat3> reference_frames;   ///< per node: material triad of the reference (α = 0)
+  std::vector<double> reference_omega;  ///< per element: ω of the reference
+  /// Per element, column-major over n×n, n = element_coordinates() (the first n² entries).
+  std::vector<std::array<Index, kRodElementCoordinates * kRodElementCoordinates>> slots;
+  /// Coordinates an element has in the model: 15, or 14 without β (linear twist).
+  [[nodiscard]] int element_coordinates() const { return interior_first >= 0 ? 15 : 14; }
+  /// Coordinates of the twist block: N node angles and, quadratic, N − 1 interior ones.
+  [[nodiscard]] Index twist_block_size(Index node_count) const {
+    return interior_first >= 0 ? 2 * node_count - 1 : node_count;
+  }
 };
 
 /// One cable. Node k owns coordinates [first_coordinate + 6k, … + 6); element j owns the
@@ -47,9 +56,11 @@ struct CableData {
   std::optional<RodData> rod;
 
   /// Global index of local coordinate i of rod element j: 0…11 the centreline block, 12 and 13
-  /// the twist angles of its nodes. Precondition: rod present.
+  /// the twist angles of its nodes, 14 its interior twist β. Precondition: rod present, and
+  /// i < rod->element_coordinates().
   [[nodiscard]] Index rod_coordinate(Index j, int i) const {
-    return i < 12 ? first_coordinate + 6 * j + i : rod->twist_first + j + (i - 12);
+    if (i < 12) return first_coordinate + 6 * j + i;
+    return i < 14 ? rod->twist_first + j + (i - 12) : rod->interior_first + j;
   }
 };
 

@@ -30,8 +30,9 @@ struct RodHistory {
   }
 };
 
-/// The 14 coordinates [r_j, r_j,x, r_j+1, r_j+1,x, α_j, α_j+1] of rod element j from q.
-[[nodiscard]] Vec14 rod_element_coordinates(const CableData& cable, Index j,
+/// The 15 coordinates [r_j, r_j,x, r_j+1, r_j+1,x, α_j, α_j+1, β_j] of rod element j from q
+/// (β_j = 0 for a linear twist).
+[[nodiscard]] Vec15 rod_element_coordinates(const CableData& cable, Index j,
                                             std::span<const double> q);
 
 /// Commit the accepted coordinates q (the model's n coordinates; longer spans are read up to n):
