@@ -5,13 +5,15 @@
 //                     [--elements N] [--t-end T] [--omega-max DEG_PER_S] [--tilt DEG]
 //                     [--friction MU] [--regularization-speed V] [--step H] [--rtol R] [--rho-inf R] [--axial-damping C]
 //                     [--bending EI] [--bending-damping CB] [--mass-damping ALPHA] [--no-rope-rope] [--index2] [--free-pole]
-//                     [--contact-pattern near|all] [--set KEY=VALUE ...] [--out DIR]
+//                     [--contact-pattern near|all] [--contact-samples K] [--set KEY=VALUE ...] [--out DIR]
 //                     [--error-control] [--error-rtol R] [--error-atol A] [--h-min H] [--h-max H]
 //                     [--step-change automatic|restart|rescale|rescale_with_velocity|rescale_climbs] [--refresh-on-contact] [--newton-damping N]
 //                     [--fast]
 // --set sets any key of the scene's [integrator] table by its dotted path below it, e.g.
 // --set genalpha.step=5e-4 or --set ida.max_order=2 (VALUE is a TOML value: number, "string", true).
 // `--contact-pattern all` reserves every candidate contact block (the first design) to measure against.
+// --contact-samples K: samples per element of the rope-shape (shaft, knob) pairs; mesh studies
+// scale it with 1/elements to keep the contact sample spacing fixed (docs/capture.md).
 // --error-control etc. set the [integrator.genalpha] keys of error-controlled stepping (docs/scenes.md).
 // --fast: generalized-α settings that meet the issue-15 agreement with the fixed-step reference at a
 // fraction of its cost (studies/README.md, "The capture example through contact"): error-controlled
@@ -55,6 +57,7 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 struct Options {
   std::string scene = "studies/scenes/capture.toml", integrator = "genalpha", out;
   long elements = 0;  // 0: as in the scene
+  long contact_samples = 0;  // rope-shape samples per element; 0: as in the scene
   double t_end = 0.0, omega_max_deg = 0.0, tilt_deg = -1.0, friction = -1.0, step = 0.0, rtol = 0.0;
   double regularization_speed = 0.0, rho_infinity = -1.0, axial_damping = -1.0, bending_stiffness = -1.0;
   double bending_damping = -1.0, mass_damping = -1.0;
@@ -104,6 +107,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--out") o.out = value();
     else if (a == "--fast") o.fast = true;
     else if (a == "--contact-pattern") o.contact_pattern = value();
+    else if (a == "--contact-samples") o.contact_samples = std::stol(value());
     else if (a == "--set") {
       const std::string kv = value();
       const auto eq = kv.find('=');
@@ -159,6 +163,8 @@ std::string apply_overrides(const Options& o) {
   for (toml::node& c : *root["contact"].as_array()) {
     toml::table& law = *c.as_table()->at("law").as_table();
     if (o.friction >= 0.0) law.insert_or_assign("friction", o.friction);
+    if (o.contact_samples > 0 && c.as_table()->contains("shape"))
+      c.as_table()->insert_or_assign("samples_per_element", static_cast<int64_t>(o.contact_samples));
     if (o.regularization_speed > 0.0) law.insert_or_assign("regularization_speed", o.regularization_speed);
   }
   if (o.omega_max_deg > 0.0)
