@@ -43,6 +43,12 @@ class SceneBuilder:
         velocity, angular_velocity, rotation_centre, node_velocity [{…}]."""
         return self._add("cable", keys)
 
+    def rod(self, **keys):
+        """[[rod]]: a Kirchhoff rod that can twist (docs/rod.md): the [[cable]] keys plus frame
+        {normal}, section {EA, EI | EI2+EI3, GJ | G, mass_per_length, polar_inertia,
+        twist_interpolation, axial_strain, …}. Joints, loads and probes name it as `cable`."""
+        return self._add("rod", keys)
+
     def body(self, **keys):
         """[[body]]: name, mass, inertia, centre_of_mass, position, rotation, velocity, …"""
         return self._add("body", keys)
