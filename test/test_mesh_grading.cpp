@@ -58,6 +58,39 @@ TEST(MeshGrading, RefinementIsNestedAndEndsAreGraded) {
   EXPECT_THROW((void)node_fractions(4, length, {.end_ratio = 0.5, .end_length = 0.0}), ModelError);
 }
 
+// A refinement band inside: nested, element at the band centre band_ratio times the far ones
+// (with and without graded ends), the band where it is asked for, and the band's checks.
+TEST(MeshGrading, BandIsNestedAndRefinesWhereAsked) {
+  const double length = 0.268;
+  const MeshGrading band{.band_ratio = 0.25, .band_width = 0.01, .band_centre = 0.3};
+  const std::vector<double> coarse = node_fractions(12, length, band);
+  const std::vector<double> fine = node_fractions(24, length, band);
+  for (Index k = 0; k <= 12; ++k) EXPECT_NEAR(fine[2 * k], coarse[k], 4e-16);
+  const std::vector<double> f = node_fractions(800, length, band);
+  Index smallest = 0;
+  for (Index k = 0; k < 800; ++k) {
+    EXPECT_GT(f[k + 1], f[k]);
+    if (f[k + 1] - f[k] < f[smallest + 1] - f[smallest]) smallest = k;
+  }
+  // The smallest element sits at the band centre (to an element) and is band_ratio times the end
+  // elements (e^{−(0.3L/μ)²} ≈ 0 there) up to the O(h/μ) variation of the density across it.
+  EXPECT_NEAR(0.5 * (f[smallest] + f[smallest + 1]), 0.3, 2.0 / 800);
+  EXPECT_NEAR((f[smallest + 1] - f[smallest]) / (f[800] - f[799]), 0.25, 0.25 * 0.05);
+  // Ends and band together: both refine, the middle of the free span stays the coarsest.
+  const std::vector<double> both = node_fractions(
+      800, length, {.end_ratio = 0.2, .end_length = 0.01, .band_ratio = 0.5, .band_width = 0.02});
+  const double end = both[1] - both[0], centre = both[401] - both[400],
+               free = both[201] - both[200];
+  EXPECT_NEAR(end / free, 0.2, 0.2 * 0.05);
+  EXPECT_NEAR(centre / free, 0.5, 0.5 * 0.05);
+  EXPECT_THROW((void)node_fractions(4, length, {.band_ratio = 0.5, .band_width = 0.0}), ModelError);
+  EXPECT_THROW((void)node_fractions(4, length, {.band_ratio = 1.5, .band_width = 0.01}),
+               ModelError);
+  EXPECT_THROW(
+      (void)node_fractions(4, length, {.band_ratio = 0.5, .band_width = 0.01, .band_centre = 1.2}),
+      ModelError);
+}
+
 TEST(MeshGrading, GradedHelixNodesLieOnTheHelix) {
   const double radius = 0.1, twist = 2.2256, rise = 0.15, length = std::hypot(radius * twist, rise);
   const std::vector<double> f = node_fractions(24, length, {.end_ratio = 0.2, .end_length = 0.01});

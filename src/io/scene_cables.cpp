@@ -115,13 +115,28 @@ CableMesh read_cable_mesh(TableReader& t, Index elements) {
   std::vector<double> fractions;
   if (auto gr = t.optional_table("grading")) {
     MeshGrading grading;
-    grading.end_ratio = gr->number("end_ratio", Range::positive);
+    const bool band = gr->has("band_ratio");
+    // Without a band the ends are what is graded: end_ratio and end_length are required.
+    grading.end_ratio = band ? gr->number_or("end_ratio", 1.0, Range::positive)
+                             : gr->number("end_ratio", Range::positive);
     if (grading.end_ratio > 1.0)
       gr->fail("end_ratio", "expected the end elements' length over the others', in (0, 1]");
-    grading.end_length = gr->number("end_length", Range::positive);
+    grading.end_length = grading.end_ratio < 1.0
+                             ? gr->number("end_length", Range::positive)
+                             : gr->number_or("end_length", 0.0, Range::non_negative);
     const std::string ends = gr->choice("ends", {"both", "start", "end"}, "both");
     grading.at_start = ends != "end";
     grading.at_end = ends != "start";
+    if (band) {
+      grading.band_ratio = gr->number("band_ratio", Range::positive);
+      if (grading.band_ratio > 1.0)
+        gr->fail("band_ratio", "expected the band elements' length over the others', in (0, 1]");
+      grading.band_width = gr->number("band_width", Range::positive);
+      grading.band_centre = gr->number_or("band_centre", 0.5, Range::non_negative);
+      if (grading.band_centre > 1.0)
+        gr->fail("band_centre",
+                 "expected the band's centre as a fraction of the length, in [0, 1]");
+    }
     gr->finish();
     // The fractions need the geometry's arc length: take it from the equal-element mesh (a
     // load-time cost of one more small mesh; each kind's length formula then lives in its generator

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <string>
 
 #include "ancf/core/error.hpp"
@@ -21,18 +22,38 @@ std::vector<double> node_fractions(Index elements, double length, const MeshGrad
   if (!(grading.end_ratio > 0.0 && grading.end_ratio <= 1.0))
     throw ModelError("mesh grading: end_ratio must be in (0, 1], got " +
                      std::to_string(grading.end_ratio));
-  if (!(grading.end_length > 0.0)) throw ModelError("mesh grading: end_length must be > 0 [m]");
-  // In units of L: x = s/L, λ = ℓ/L; N(x) = x + cλ[a(1 − e^{−x/λ}) + b(e^{−(1−x)/λ} − e^{−1/λ})],
+  if (grading.graded_ends() && !(grading.end_length > 0.0))
+    throw ModelError("mesh grading: end_length must be > 0 [m]");
+  if (!(grading.band_ratio > 0.0 && grading.band_ratio <= 1.0))
+    throw ModelError("mesh grading: band_ratio must be in (0, 1], got " +
+                     std::to_string(grading.band_ratio));
+  if (grading.graded_band() && !(grading.band_width > 0.0))
+    throw ModelError("mesh grading: band_width must be > 0 [m]");
+  if (!(grading.band_centre >= 0.0 && grading.band_centre <= 1.0))
+    throw ModelError("mesh grading: band_centre must be in [0, 1], got " +
+                     std::to_string(grading.band_centre));
+  // In units of L: x = s/L, λ = ℓ/L, m = μ/L, x_b = band_centre;
+  //   N(x) = x + cλ[a(1 − e^{−x/λ}) + b(e^{−(1−x)/λ} − e^{−1/λ})]
+  //          + c_b m √π/2 [erf((x − x_b)/m) + erf(x_b/m)],
   // N'(x) = ρ(x) ≥ 1, so N is strictly increasing and Newton with a bracket converges.
-  const double c = 1.0 / grading.end_ratio - 1.0, lambda = grading.end_length / length;
+  const bool ends = grading.graded_ends(), band = grading.graded_band();
+  const double c = ends ? 1.0 / grading.end_ratio - 1.0 : 0.0;
+  const double lambda = ends ? grading.end_length / length : 1.0;
   const double a = grading.at_start ? 1.0 : 0.0, b = grading.at_end ? 1.0 : 0.0;
   const double tail = std::exp(-1.0 / lambda);
+  const double cb = band ? 1.0 / grading.band_ratio - 1.0 : 0.0;
+  const double m = band ? grading.band_width / length : 1.0, xb = grading.band_centre;
+  const double half_sqrt_pi = 0.5 * std::sqrt(std::numbers::pi);
   auto count = [&](double x) {
-    return x + c * lambda *
-                   (a * (1.0 - std::exp(-x / lambda)) + b * (std::exp(-(1.0 - x) / lambda) - tail));
+    return x +
+           c * lambda *
+               (a * (1.0 - std::exp(-x / lambda)) + b * (std::exp(-(1.0 - x) / lambda) - tail)) +
+           cb * m * half_sqrt_pi * (std::erf((x - xb) / m) + std::erf(xb / m));
   };
   auto density = [&](double x) {
-    return 1.0 + c * (a * std::exp(-x / lambda) + b * std::exp(-(1.0 - x) / lambda));
+    const double z = (x - xb) / m;
+    return 1.0 + c * (a * std::exp(-x / lambda) + b * std::exp(-(1.0 - x) / lambda)) +
+           cb * std::exp(-z * z);
   };
   const double total = count(1.0);
   f.front() = 0.0;
