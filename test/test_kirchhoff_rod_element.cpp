@@ -66,9 +66,11 @@ std::vector<Case> cases() {
   return out;
 }
 
-RodSection section(bool damping, RodAxialStrain axial = RodAxialStrain::collocated) {
+RodSection section(bool damping, RodAxialStrain axial = RodAxialStrain::collocated,
+                   RodTorsionStrain torsion = RodTorsionStrain::projected) {
   RodSection s;
   s.axial_strain = axial;
+  s.torsion_strain = torsion;
   s.axial_stiffness = 3e3;  // comparable terms, so no block hides in round-off of another
   s.torsional_stiffness = 0.7;
   s.bending_stiffness_2 = 1.1;
@@ -229,12 +231,27 @@ std::vector<FdCase> fd_cases() {
   return out;
 }
 
-constexpr std::array<RodAxialStrain, 2> kAxialStrains{RodAxialStrain::collocated,
-                                                      RodAxialStrain::gauss_points};
+// The strain choices of the section (RodAxialStrain × RodTorsionStrain), with and without
+// damping: every derivative check runs on each.
+struct Variant {
+  bool damping;
+  RodAxialStrain axial;
+  RodTorsionStrain torsion;
+};
+std::vector<Variant> variants() {
+  std::vector<Variant> out;
+  for (const bool damping : {false, true})
+    for (const RodAxialStrain axial : {RodAxialStrain::collocated, RodAxialStrain::gauss_points})
+      for (const RodTorsionStrain torsion :
+           {RodTorsionStrain::projected, RodTorsionStrain::gauss_points})
+        out.push_back({damping, axial, torsion});
+  return out;
+}
 
 TEST(KirchhoffRod, ForceIsEnergyGradient) {
-  for (const RodAxialStrain axial : kAxialStrains) {
-    const RodSection s = section(false, axial);
+  for (const Variant& v : variants()) {
+    if (v.damping) continue;
+    const RodSection s = section(false, v.axial, v.torsion);
     for (const FdCase& c : fd_cases()) {
       const auto r = eval(s, c.ref, c.history, c.e, c.e_dot, false, false);
       const auto energy = [&](const fdcheck::Vec& x) {
@@ -247,11 +264,9 @@ TEST(KirchhoffRod, ForceIsEnergyGradient) {
 }
 
 TEST(KirchhoffRod, StiffnessAndDampingMatrices) {
-  for (const auto& [damping, axial] :
-       {std::pair{false, RodAxialStrain::collocated}, std::pair{true, RodAxialStrain::collocated},
-        std::pair{false, RodAxialStrain::gauss_points},
-        std::pair{true, RodAxialStrain::gauss_points}}) {
-    const RodSection s = section(damping, axial);
+  for (const Variant& v : variants()) {
+    const bool damping = v.damping;
+    const RodSection s = section(damping, v.axial, v.torsion);
     for (const FdCase& c : fd_cases()) {
       const auto r = eval(s, c.ref, c.history, c.e, c.e_dot, true, damping);
       // Residual-only and full evaluations agree (two jet types, same operations).
@@ -268,8 +283,8 @@ TEST(KirchhoffRod, StiffnessAndDampingMatrices) {
                 damping ? 1e300 : 1e3 * kEps * r.stiffness.norm())
           << c.name;  // without damping K is a Hessian
       if (!damping) continue;
-      const auto force_v = [&](const fdcheck::Vec& v) {
-        return fdcheck::Vec(eval(s, c.ref, c.history, c.e, Vec15(v), false, false).force);
+      const auto force_v = [&](const fdcheck::Vec& velocity) {
+        return fdcheck::Vec(eval(s, c.ref, c.history, c.e, Vec15(velocity), false, false).force);
       };
       const auto dv = fdcheck::check_jacobian(force_v, c.e_dot, r.damping);
       EXPECT_TRUE(dv.ok()) << c.name << ": D ratio " << dv.max_ratio;
@@ -280,11 +295,9 @@ TEST(KirchhoffRod, StiffnessAndDampingMatrices) {
 // The two kernels (RodKernel): same operations for the values, so energy and strains are bitwise
 // equal; force, tangent and damping matrix agree to round-off.
 TEST(KirchhoffRod, LocalChainKernelEqualsElementJets) {
-  for (const auto& [damping, axial] :
-       {std::pair{false, RodAxialStrain::collocated}, std::pair{true, RodAxialStrain::collocated},
-        std::pair{false, RodAxialStrain::gauss_points},
-        std::pair{true, RodAxialStrain::gauss_points}}) {
-    const RodSection s = section(damping, axial);
+  for (const Variant& v : variants()) {
+    const bool damping = v.damping;
+    const RodSection s = section(damping, v.axial, v.torsion);
     for (const FdCase& c : fd_cases()) {
       for (const bool k : {false, true}) {
         RodElementResult local, full;

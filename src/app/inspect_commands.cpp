@@ -63,13 +63,14 @@ int info_command(const std::string& scene_path) {
         fmt::print(
             "  {:<18} {:>4} elements {:>4} nodes  Kirchhoff rod ({} twist, coordinates {}..{}): EA "
             "{:.4g} N  GJ {:.4g} N m^2  EI2 {:.4g}  EI3 {:.4g} N m^2  rhoA {:.4g} kg/m  rhoJ "
-            "{:.4g} kg m  Gauss {}  axial strain {}{}\n",
+            "{:.4g} kg m  Gauss {}  axial strain {}  torsion {}{}\n",
             c.name, c.elements.size(), c.node_count,
             c.rod->interior_first >= 0 ? "quadratic" : "linear", c.rod->twist_first,
             c.rod->twist_first + c.rod->twist_block_size(c.node_count) - 1, r.axial_stiffness,
             r.torsional_stiffness, r.bending_stiffness_2, r.bending_stiffness_3, r.mass_per_length,
             r.polar_inertia, kRodGaussPoints,
             r.axial_strain == RodAxialStrain::collocated ? "collocated" : "at Gauss points",
+            r.torsion_strain == RodTorsionStrain::projected ? "projected" : "at Gauss points",
             graded);
         continue;
       }

@@ -97,6 +97,10 @@ RodInput read_rod_section(TableReader s) {
   r.twist = s.choice("twist_interpolation", {"quadratic", "linear"}, "quadratic") == "linear"
                 ? RodTwist::linear
                 : RodTwist::quadratic;
+  r.torsion_strain =
+      s.choice("torsion_strain", {"projected", "gauss_points"}, "projected") == "gauss_points"
+          ? RodTorsionStrain::gauss_points
+          : RodTorsionStrain::projected;
   in.cable.mass_per_length = r.mass_per_length;
   s.finish();
   return in;

@@ -13,6 +13,7 @@
 #include "kirchhoff_rod_axial.hpp"
 #include "kirchhoff_rod_local_chain.hpp"
 #include "kirchhoff_rod_strains.hpp"
+#include "kirchhoff_rod_torsion.hpp"
 
 namespace ancf {
 namespace {
@@ -109,6 +110,12 @@ RodElementReference RodElementReference::from_reference(const Vec12& e0, double 
     const auto s = point_strains(point_data(ref, p), f, x);
     ref.k0[p] = Vec3(s[1], s[2], s[3]);
   }
+  ref.torsion_projection = linear_projection(ref.xi, ref.weight);
+  for (int p = 0; p < kRodGaussPoints; ++p) {
+    ref.projected_k10[p] = 0.0;
+    for (int q = 0; q < kRodGaussPoints; ++q)
+      ref.projected_k10[p] += ref.torsion_projection(p, q) * ref.k0[q][0];
+  }
   return ref;
 }
 
@@ -167,8 +174,11 @@ void evaluate_with_element_jets(const RodSection& section, const RodElementRefer
   const std::array<double, 4> damp{section.axial_damping, section.torsional_damping,
                                    section.bending_damping, section.bending_damping};
   const bool damping = section.has_damping();
-  // The axial strain at the Gauss points, unless it is collocated (add_collocated_axial).
+  // The axial strain at the Gauss points, unless it is collocated (add_collocated_axial); the
+  // torsion likewise, unless it is projected (add_projected_torsion).
   const int first_strain = section.axial_strain == RodAxialStrain::collocated ? 1 : 0;
+  const bool projected_torsion = section.torsion_strain == RodTorsionStrain::projected;
+  std::array<TorsionAtPoint, kRodGaussPoints> torsion;
 
   // One pass per Gauss point over the four strains of a jet type J (with or without Hessians).
   auto run = [&](auto tag) {
@@ -179,7 +189,15 @@ void evaluate_with_element_jets(const RodSection& section, const RodElementRefer
       const auto s = point_strains(point_data(ref, p), f, x);
       const double w = ref.weight[p];
       if (p == kRodGaussPoints / 2) out.strain_mid = Vec3(s[1].v, s[2].v, s[3].v);
+      if (projected_torsion) {
+        torsion[p].value = s[1].v;
+        torsion[p].gradient = s[1].g;
+        if constexpr (std::is_same_v<J, Jet<15, true>>) {
+          if (request.stiffness) torsion[p].hessian = s[1].h;
+        }
+      }
       for (int k = first_strain; k < 4; ++k) {
+        if (k == 1 && projected_torsion) continue;
         const double d = s[k].v - (k == 0 ? 0.0 : ref.k0[p][k - 1]);
         out.energy += 0.5 * w * stiff[k] * d * d;
         double rate = 0.0;
@@ -205,6 +223,7 @@ void evaluate_with_element_jets(const RodSection& section, const RodElementRefer
     run(Jet<15, true>{});
   else
     run(Jet<15, false>{});
+  if (projected_torsion) add_projected_torsion(section, ref, torsion, e_dot, request, out);
 }
 
 }  // namespace

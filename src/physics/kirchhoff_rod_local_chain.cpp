@@ -17,6 +17,7 @@
 
 #include "ancf/physics/jet.hpp"
 #include "kirchhoff_rod_strains.hpp"
+#include "kirchhoff_rod_torsion.hpp"
 
 namespace ancf::rod_detail {
 namespace {
@@ -271,8 +272,12 @@ void evaluate(const RodSection& section, const RodElementReference& ref,
                                    section.bending_damping, section.bending_damping};
   const bool damping = section.has_damping();
   const bool stiffness = kSecond && request.stiffness;
-  // The axial strain at the Gauss points, unless it is collocated (add_collocated_axial).
+  // The axial strain at the Gauss points, unless it is collocated (add_collocated_axial); the
+  // torsion likewise, unless it is projected (add_projected_torsion, which needs each point's
+  // K₁ with its derivatives in the element coordinates).
   const int first_strain = section.axial_strain == RodAxialStrain::collocated ? 1 : 0;
+  const bool projected_torsion = section.torsion_strain == RodTorsionStrain::projected;
+  std::array<TorsionAtPoint, kRodGaussPoints> torsion;
 
   // Element frame: node 1's triad in t₁, ζ = α₂ + ω in (t₁, t₂) (α₂ enters linearly).
   const NodeFrame<kSecond> frame = staged_element_frame<kSecond>(history, e);
@@ -296,7 +301,21 @@ void evaluate(const RodSection& section, const RodElementReference& ref,
     LocalVec f = LocalVec::Zero();
     LocalMat k_local = LocalMat::Zero(), d_local = LocalMat::Zero();
     LocalVec z_local = LocalVec::Zero();
+    if (projected_torsion) {
+      torsion[p].value = s[1].v;
+      torsion[p].gradient = map_transpose_times(pd, zeta_gradient, s[1].g);
+      if constexpr (kSecond) {
+        if (stiffness) {  // Bᵀ H B + (∂K₁/∂ζ) H_ζ
+          torsion[p].hessian.setZero();
+          add_congruence(pd, zeta_gradient, s[1].h, torsion[p].hessian);
+          for (int j = 0; j < 6; ++j)
+            for (int i = 0; i < 6; ++i)
+              torsion[p].hessian(kTangents[i], kTangents[j]) += s[1].g[kZeta] * zeta.h(i, j);
+        }
+      }
+    }
     for (int k = first_strain; k < 4; ++k) {
+      if (k == 1 && projected_torsion) continue;
       const double d = s[k].v - (k == 0 ? 0.0 : ref.k0[p][k - 1]);
       out.energy += 0.5 * w * stiff[k] * d * d;
       const bool damped = damping && damp[k] > 0.0;
@@ -341,6 +360,7 @@ void evaluate(const RodSection& section, const RodElementReference& ref,
       }
     }
   }
+  if (projected_torsion) add_projected_torsion(section, ref, torsion, e_dot, request, out);
 }
 
 }  // namespace

@@ -59,6 +59,19 @@ enum class RodTwist {
   quadratic,
 };
 
+/// Where the torsion of the energy ½GJ (K₁ − K₁⁰)² is taken.
+enum class RodTorsionStrain {
+  /// K₁ at each Gauss point. On a curved element bent out of its plane, keeping K₁ = K₁⁰ at four
+  /// points also constrains the centreline (the smallest-rotation twist rate is not polynomial):
+  /// torsion-stiff curved rods lock and converge as h² (docs/rod.md).
+  gauss_points,
+  /// K₁ replaced by its L2 projection onto linear functions over the element (weights of the
+  /// Gauss rule): two torsion conditions per element, the number of its twist freedoms. An
+  /// assumed-strain choice of ours in the spirit of the collocated axial strain; exact for a
+  /// straight rod, where K₁ = ψ_x is linear. The default.
+  projected,
+};
+
 /// Section data of a rod (all elements of a rod share it). Units SI.
 struct RodSection {
   double axial_stiffness = 0.0;      ///< EA [N]
@@ -72,6 +85,7 @@ struct RodSection {
   double bending_damping = 0.0;      ///< c_b [N m² s]: bending moments c_b K̇₂, c_b K̇₃
   RodAxialStrain axial_strain = RodAxialStrain::collocated;
   RodTwist twist = RodTwist::quadratic;
+  RodTorsionStrain torsion_strain = RodTorsionStrain::projected;
   [[nodiscard]] bool has_damping() const {
     return axial_damping > 0.0 || torsional_damping > 0.0 || bending_damping > 0.0;
   }
@@ -98,6 +112,10 @@ struct RodElementReference {
   std::array<Vec4, 3> collocation_d1;
   std::array<double, 3> collocation_inv_j0{};
   std::array<std::array<double, 3>, kRodGaussPoints> collocation_weight{};
+  /// RodTorsionStrain::projected: K̃₁(ξ_p) = Σ_q P_pq K₁(ξ_q), the projection onto linear
+  /// functions orthogonal in the weights w_q; and the reference's K̃₁⁰ at the Gauss points.
+  Eigen::Matrix<double, kRodGaussPoints, kRodGaussPoints> torsion_projection;
+  std::array<double, kRodGaussPoints> projected_k10{};
 
   /// From the reference centreline e0 (12), length l > 0 and the reference history (the nodes'
   /// reference material triads with α = 0; history.omega is set here). Throws ModelError if a
