@@ -17,7 +17,9 @@
 // unit reference arc length s (J₀ = |r⁰_x|, κ = r_x × r_xx/|r_x|²):
 //   ε = |r_x|/J₀ − 1,  K₁ = [ψ_x − (t̂₁·κ)/(1 + t̂₁·g₁)]/J₀,  K₂ = κ·g₂/J₀,  K₃ = κ·g₃/J₀,
 // energy U = ∫ ½[EA ε² + GJ (K₁−K₁⁰)² + EI₂ (K₂−K₂⁰)² + EI₃ (K₃−K₃⁰)²] J₀ dx with K⁰ the same
-// formulas at the reference configuration and reference triads (exactly stress-free).
+// formulas at the reference configuration and reference triads (exactly stress-free); by default
+// ε is collocated and K₁ projected over the element (RodAxialStrain, RodTorsionStrain: against
+// membrane and twist locking).
 // Kelvin–Voigt damping adds Σ c_k K̇_k ∂K_k/∂e. Force and tangent are exact (second-order
 // forward differentiation, jet.hpp); no finite differences.
 #pragma once
