@@ -141,13 +141,13 @@ toml::table* find_named(toml::table& root, const char* array, const std::string&
 std::string apply_overrides(const Options& o) {
   toml::table root = toml::parse_file(o.scene);
   if (o.elements > 0) studies::set_capture_rope_elements(root, o.elements);
+  const bool rods = !root["cable"].as_array();  // the ropes are [[rod]]s: they always bend
   if (o.axial_damping >= 0.0 || o.bending_stiffness >= 0.0 || o.bending_damping >= 0.0 || o.mass_damping >= 0.0)
-    for (toml::node& c : *root[root["cable"].as_array() ? "cable" : "rod"].as_array()) {
+    for (toml::node& c : *root[rods ? "rod" : "cable"].as_array()) {
       toml::table& section = *c.as_table()->at("section").as_table();
-      const bool rod = !root["cable"].as_array();  // a rod always bends: no 'bending' switch
       if (o.axial_damping >= 0.0) section.insert_or_assign("axial_damping", o.axial_damping);
       if (o.bending_stiffness > 0.0) {
-        if (!rod) section.insert_or_assign("bending", true);
+        if (!rods) section.insert_or_assign("bending", true);  // a rod has no 'bending' switch
         section.erase("EI2");
         section.erase("EI3");
         section.insert_or_assign("EI", o.bending_stiffness);

@@ -65,7 +65,7 @@ int info_command(const std::string& scene_path) {
             "{:.4g} N  GJ {:.4g} N m^2  EI2 {:.4g}  EI3 {:.4g} N m^2  rhoA {:.4g} kg/m  rhoJ "
             "{:.4g} kg m  Gauss {}  axial strain {}  torsion {}{}\n",
             c.name, c.elements.size(), c.node_count,
-            c.rod->interior_first >= 0 ? "quadratic" : "linear", c.rod->twist_first,
+            r.twist == RodTwist::quadratic ? "quadratic" : "linear", c.rod->twist_first,
             c.rod->twist_first + c.rod->twist_block_size(c.node_count) - 1, r.axial_stiffness,
             r.torsional_stiffness, r.bending_stiffness_2, r.bending_stiffness_3, r.mass_per_length,
             r.polar_inertia, kRodGaussPoints,

@@ -13,6 +13,8 @@
 //   n_c = Σ_p w_p N_p L_pc,  D = Σ_p w_p c_a ∇ε̃_p ∇ε̃_pᵀ.
 #include "kirchhoff_rod_axial.hpp"
 
+#include "kirchhoff_rod_strains.hpp"
+
 namespace ancf::rod_detail {
 
 std::array<double, 3> collocation_lagrange(double xi) {
@@ -29,8 +31,7 @@ struct CollocationStrain {
 };
 
 CollocationStrain collocation_strain(const Vec4& d1, double inv_j0, const Vec15& e) {
-  Vec3 a = d1[0] * e.segment<3>(0);
-  for (int k = 1; k < 4; ++k) a += d1[k] * e.segment<3>(3 * k);
+  const Vec3 a = centreline_slope(d1, e.data());
   const double n = a.norm();
   const Vec3 g = a / n;
   return {n * inv_j0 - 1.0, inv_j0 * g, (inv_j0 / n) * (Mat3::Identity() - g * g.transpose())};
@@ -57,8 +58,7 @@ void add_collocated_axial(const RodSection& section, const RodElementReference& 
     cs[c] = collocation_strain(ref.collocation_d1[c], ref.collocation_inv_j0[c], e);
     grad[c] = centreline_gradient(ref.collocation_d1[c], cs[c].grad);
     if (damped && request.stiffness) {
-      Vec3 a_dot = Vec3::Zero();  // ȧ_c
-      for (int k = 0; k < 4; ++k) a_dot += ref.collocation_d1[c][k] * e_dot.segment<3>(3 * k);
+      const Vec3 a_dot = centreline_slope(ref.collocation_d1[c], e_dot.data());  // ȧ_c
       hess_edot[c] = centreline_gradient(ref.collocation_d1[c], cs[c].hess * a_dot);
     }
   }

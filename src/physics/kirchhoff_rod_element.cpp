@@ -13,7 +13,6 @@
 #include "kirchhoff_rod_axial.hpp"
 #include "kirchhoff_rod_local_chain.hpp"
 #include "kirchhoff_rod_strains.hpp"
-#include "kirchhoff_rod_torsion.hpp"
 
 namespace ancf {
 namespace {
@@ -84,9 +83,7 @@ RodElementReference RodElementReference::from_reference(const Vec12& e0, double 
     ref.xi[p] = xi;
     ref.d1[p] = hermite::first_derivative(xi, length);
     ref.d2[p] = hermite::second_derivative(xi, length);
-    Vec3 a = Vec3::Zero();
-    for (int k = 0; k < 4; ++k) a += ref.d1[p][k] * e0.segment<3>(3 * k);
-    const double j0 = a.norm();
+    const double j0 = centreline_slope(ref.d1[p], e0.data()).norm();
     if (!(j0 > 0.0)) throw ModelError("Kirchhoff rod element: vanishing reference slope");
     ref.inv_j0[p] = 1.0 / j0;
     ref.weight[p] = rule.weights[p] * length * j0;
@@ -95,8 +92,7 @@ RodElementReference RodElementReference::from_reference(const Vec12& e0, double 
   for (int c = 0; c < 3; ++c) {
     const double xi = 0.5 * c;
     ref.collocation_d1[c] = hermite::first_derivative(xi, length);
-    Vec3 a = Vec3::Zero();
-    for (int k = 0; k < 4; ++k) a += ref.collocation_d1[c][k] * e0.segment<3>(3 * k);
+    const Vec3 a = centreline_slope(ref.collocation_d1[c], e0.data());
     if (!(a.norm() > 0.0)) throw ModelError("Kirchhoff rod element: vanishing reference slope");
     ref.collocation_inv_j0[c] = 1.0 / a.norm();
   }
@@ -122,10 +118,8 @@ RodElementReference RodElementReference::from_reference(const Vec12& e0, double 
 RodPointState rod_point_state(const RodElementReference& ref, const RodElementHistory& history,
                               const Vec15& e, double xi) {
   const Vec4 d1 = hermite::first_derivative(xi, ref.length);
-  Vec3 a0 = Vec3::Zero();
-  for (int k = 0; k < 4; ++k) a0 += d1[k] * ref.e0.segment<3>(3 * k);
-  const PointData pd{d1, hermite::second_derivative(xi, ref.length), 1.0 / a0.norm(), xi,
-                     ref.length};
+  const PointData pd{d1, hermite::second_derivative(xi, ref.length),
+                     1.0 / centreline_slope(d1, ref.e0.data()).norm(), xi, ref.length};
   const auto x = to_array<double>(e);
   const ElementFrame<double> f = element_frame(history, x);
   PointTriad<double> t;
@@ -164,21 +158,17 @@ double rod_element_omega(const RodElementHistory& history, const Vec15& e) {
 
 namespace {
 
-// The original kernel: jets in all 15 element coordinates through every operation.
+// The original kernel: jets in all 15 element coordinates through every operation. Adds and fills
+// as evaluate_with_local_chain does.
 void evaluate_with_element_jets(const RodSection& section, const RodElementReference& ref,
                                 const RodElementHistory& history, const Vec15& e,
                                 const Vec15& e_dot, const RodEvalRequest& request,
-                                RodElementResult& out) {
+                                RodElementResult& out, TorsionPoints* torsion) {
   const std::array<double, 4> stiff{section.axial_stiffness, section.torsional_stiffness,
                                     section.bending_stiffness_2, section.bending_stiffness_3};
   const std::array<double, 4> damp{section.axial_damping, section.torsional_damping,
                                    section.bending_damping, section.bending_damping};
   const bool damping = section.has_damping();
-  // The axial strain at the Gauss points, unless it is collocated (add_collocated_axial); the
-  // torsion likewise, unless it is projected (add_projected_torsion).
-  const int first_strain = section.axial_strain == RodAxialStrain::collocated ? 1 : 0;
-  const bool projected_torsion = section.torsion_strain == RodTorsionStrain::projected;
-  std::array<TorsionAtPoint, kRodGaussPoints> torsion;
 
   // One pass per Gauss point over the four strains of a jet type J (with or without Hessians).
   auto run = [&](auto tag) {
@@ -189,15 +179,15 @@ void evaluate_with_element_jets(const RodSection& section, const RodElementRefer
       const auto s = point_strains(point_data(ref, p), f, x);
       const double w = ref.weight[p];
       if (p == kRodGaussPoints / 2) out.strain_mid = Vec3(s[1].v, s[2].v, s[3].v);
-      if (projected_torsion) {
-        torsion[p].value = s[1].v;
-        torsion[p].gradient = s[1].g;
+      if (torsion) {
+        (*torsion)[p].value = s[1].v;
+        (*torsion)[p].gradient = s[1].g;
         if constexpr (std::is_same_v<J, Jet<15, true>>) {
-          if (request.stiffness) torsion[p].hessian = s[1].h;
+          if (request.stiffness) (*torsion)[p].hessian = s[1].h;
         }
       }
-      for (int k = first_strain; k < 4; ++k) {
-        if (k == 1 && projected_torsion) continue;
+      for (int k = 0; k < 4; ++k) {
+        if (!strain_at_gauss_points(section, k)) continue;
         const double d = s[k].v - (k == 0 ? 0.0 : ref.k0[p][k - 1]);
         out.energy += 0.5 * w * stiff[k] * d * d;
         double rate = 0.0;
@@ -223,7 +213,6 @@ void evaluate_with_element_jets(const RodSection& section, const RodElementRefer
     run(Jet<15, true>{});
   else
     run(Jet<15, false>{});
-  if (projected_torsion) add_projected_torsion(section, ref, torsion, e_dot, request, out);
 }
 
 }  // namespace
@@ -235,10 +224,16 @@ void evaluate_rod_element(const RodSection& section, const RodElementReference& 
   out.force.setZero();
   if (request.stiffness) out.stiffness.setZero();
   if (request.damping_matrix) out.damping.setZero();
+  // The kernels take the strains at the Gauss points (strain_at_gauss_points); the projected
+  // torsion and the collocated axial strain are element-wide and added here.
+  TorsionPoints torsion;
+  TorsionPoints* const k1 =
+      section.torsion_strain == RodTorsionStrain::projected ? &torsion : nullptr;
   if (request.kernel == RodKernel::element_jets)
-    evaluate_with_element_jets(section, ref, history, e, e_dot, request, out);
+    evaluate_with_element_jets(section, ref, history, e, e_dot, request, out, k1);
   else
-    rod_detail::evaluate_with_local_chain(section, ref, history, e, e_dot, request, out);
+    rod_detail::evaluate_with_local_chain(section, ref, history, e, e_dot, request, out, k1);
+  if (k1) rod_detail::add_projected_torsion(section, ref, torsion, e_dot, request, out);
   if (section.axial_strain == RodAxialStrain::collocated)
     rod_detail::add_collocated_axial(section, ref, e, e_dot, request, out);
 }

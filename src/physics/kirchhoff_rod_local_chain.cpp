@@ -17,7 +17,6 @@
 
 #include "ancf/physics/jet.hpp"
 #include "kirchhoff_rod_strains.hpp"
-#include "kirchhoff_rod_torsion.hpp"
 
 namespace ancf::rod_detail {
 namespace {
@@ -265,19 +264,13 @@ void add_congruence(const PointData& pd, const Vec15& zg, const LocalMat& m, Mat
 template <bool kSecond>
 void evaluate(const RodSection& section, const RodElementReference& ref,
               const RodElementHistory& history, const Vec15& e, const Vec15& e_dot,
-              const RodEvalRequest& request, RodElementResult& out) {
+              const RodEvalRequest& request, RodElementResult& out, TorsionPoints* torsion) {
   const std::array<double, 4> stiff{section.axial_stiffness, section.torsional_stiffness,
                                     section.bending_stiffness_2, section.bending_stiffness_3};
   const std::array<double, 4> damp{section.axial_damping, section.torsional_damping,
                                    section.bending_damping, section.bending_damping};
   const bool damping = section.has_damping();
   const bool stiffness = kSecond && request.stiffness;
-  // The axial strain at the Gauss points, unless it is collocated (add_collocated_axial); the
-  // torsion likewise, unless it is projected (add_projected_torsion, which needs each point's
-  // K₁ with its derivatives in the element coordinates).
-  const int first_strain = section.axial_strain == RodAxialStrain::collocated ? 1 : 0;
-  const bool projected_torsion = section.torsion_strain == RodTorsionStrain::projected;
-  std::array<TorsionAtPoint, kRodGaussPoints> torsion;
 
   // Element frame: node 1's triad in t₁, ζ = α₂ + ω in (t₁, t₂) (α₂ enters linearly).
   const NodeFrame<kSecond> frame = staged_element_frame<kSecond>(history, e);
@@ -301,21 +294,22 @@ void evaluate(const RodSection& section, const RodElementReference& ref,
     LocalVec f = LocalVec::Zero();
     LocalMat k_local = LocalMat::Zero(), d_local = LocalMat::Zero();
     LocalVec z_local = LocalVec::Zero();
-    if (projected_torsion) {
-      torsion[p].value = s[1].v;
-      torsion[p].gradient = map_transpose_times(pd, zeta_gradient, s[1].g);
+    if (torsion) {  // K₁ in the element coordinates, for add_projected_torsion
+      TorsionAtPoint& t = (*torsion)[p];
+      t.value = s[1].v;
+      t.gradient = map_transpose_times(pd, zeta_gradient, s[1].g);
       if constexpr (kSecond) {
         if (stiffness) {  // Bᵀ H B + (∂K₁/∂ζ) H_ζ
-          torsion[p].hessian.setZero();
-          add_congruence(pd, zeta_gradient, s[1].h, torsion[p].hessian);
+          t.hessian.setZero();
+          add_congruence(pd, zeta_gradient, s[1].h, t.hessian);
           for (int j = 0; j < 6; ++j)
             for (int i = 0; i < 6; ++i)
-              torsion[p].hessian(kTangents[i], kTangents[j]) += s[1].g[kZeta] * zeta.h(i, j);
+              t.hessian(kTangents[i], kTangents[j]) += s[1].g[kZeta] * zeta.h(i, j);
         }
       }
     }
-    for (int k = first_strain; k < 4; ++k) {
-      if (k == 1 && projected_torsion) continue;
+    for (int k = 0; k < 4; ++k) {
+      if (!strain_at_gauss_points(section, k)) continue;
       const double d = s[k].v - (k == 0 ? 0.0 : ref.k0[p][k - 1]);
       out.energy += 0.5 * w * stiff[k] * d * d;
       const bool damped = damping && damp[k] > 0.0;
@@ -360,18 +354,18 @@ void evaluate(const RodSection& section, const RodElementReference& ref,
       }
     }
   }
-  if (projected_torsion) add_projected_torsion(section, ref, torsion, e_dot, request, out);
 }
 
 }  // namespace
 
 void evaluate_with_local_chain(const RodSection& section, const RodElementReference& ref,
                                const RodElementHistory& history, const Vec15& e, const Vec15& e_dot,
-                               const RodEvalRequest& request, RodElementResult& out) {
+                               const RodEvalRequest& request, RodElementResult& out,
+                               TorsionPoints* torsion) {
   if (request.stiffness)
-    evaluate<true>(section, ref, history, e, e_dot, request, out);
+    evaluate<true>(section, ref, history, e, e_dot, request, out, torsion);
   else
-    evaluate<false>(section, ref, history, e, e_dot, request, out);
+    evaluate<false>(section, ref, history, e, e_dot, request, out, torsion);
 }
 
 }  // namespace ancf::rod_detail

@@ -135,6 +135,15 @@ void centreline_derivatives(const PointData& pd, const std::array<T, 15>& e, V3<
   }
 }
 
+// Whether the kernels take strain k (ε, K₁, K₂, K₃) at each Gauss point themselves. The
+// collocated ε (kirchhoff_rod_axial) and the projected K₁ (kirchhoff_rod_torsion) are added
+// element-wide by evaluate_rod_element instead.
+inline bool strain_at_gauss_points(const RodSection& section, int k) {
+  if (k == 0) return section.axial_strain == RodAxialStrain::gauss_points;
+  if (k == 1) return section.torsion_strain == RodTorsionStrain::gauss_points;
+  return true;
+}
+
 // The twist ψ(ξ) = (1 − ξ)α₁ + ξζ + 4ξ(1 − ξ)β and l ψ_x = ζ − α₁ + 4(1 − 2ξ)β (one expression
 // for every scalar type, so that the kernels' values are bitwise equal; β = 0 adds exact zeros).
 inline double bubble(double xi) {
@@ -150,6 +159,14 @@ T twist_angle(double xi, const T& alpha1, const T& zeta, const T& beta) {
 template <class T>
 T twist_increment(double xi, const T& alpha1, const T& zeta, const T& beta) {
   return zeta - alpha1 + bubble_slope(xi) * beta;
+}
+
+// r_x = Σ_k S_k′ x_k in double from d1 = S′ (hermite::first_derivative) and the four centreline
+// blocks at x[0, 12) (the reference's e0 or an element's e).
+inline Vec3 centreline_slope(const Vec4& d1, const double* x) {
+  Vec3 a = Vec3::Zero();
+  for (int k = 0; k < 4; ++k) a += d1[k] * Eigen::Map<const Vec3>(x + 3 * k);
+  return a;
 }
 
 // Strains (ε, K₁, K₂, K₃) at a point from r_x = a, r_xx = b, the element frame, α₁ and β.

@@ -32,9 +32,8 @@ Eigen::Matrix<double, kRodGaussPoints, kRodGaussPoints> linear_projection(
 }
 
 void add_projected_torsion(const RodSection& section, const RodElementReference& ref,
-                           const std::array<TorsionAtPoint, kRodGaussPoints>& k1,
-                           const Vec15& e_dot, const RodEvalRequest& request,
-                           RodElementResult& out) {
+                           const TorsionPoints& k1, const Vec15& e_dot,
+                           const RodEvalRequest& request, RodElementResult& out) {
   const double gj = section.torsional_stiffness, ct = section.torsional_damping;
   const bool damped = ct > 0.0;
   const auto& p = ref.torsion_projection;

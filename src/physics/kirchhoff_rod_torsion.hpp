@@ -16,6 +16,8 @@ struct TorsionAtPoint {
   Mat15 hessian;
 };
 
+using TorsionPoints = std::array<TorsionAtPoint, kRodGaussPoints>;
+
 /// P_pq of RodElementReference::torsion_projection from the Gauss abscissae and weights.
 [[nodiscard]] Eigen::Matrix<double, kRodGaussPoints, kRodGaussPoints> linear_projection(
     const std::array<double, kRodGaussPoints>& xi,
@@ -25,8 +27,7 @@ struct TorsionAtPoint {
 /// force, and the stiffness / damping matrix as requested), K̃₁_p = Σ_q P_pq K₁_q. The kernels
 /// then leave the torsion out of their Gauss-point loops.
 void add_projected_torsion(const RodSection& section, const RodElementReference& ref,
-                           const std::array<TorsionAtPoint, kRodGaussPoints>& k1,
-                           const Vec15& e_dot, const RodEvalRequest& request,
-                           RodElementResult& out);
+                           const TorsionPoints& k1, const Vec15& e_dot,
+                           const RodEvalRequest& request, RodElementResult& out);
 
 }  // namespace ancf::rod_detail

@@ -446,9 +446,8 @@ Model ModelBuilder::finalize() {
     c.name = pc.name;
     c.section = pc.section;
     const Index twist_first = pc.rod ? next : -1;
-    if (pc.rod)  // twist block in front of the centreline: N node angles (+ N − 1 interior)
-      next += pc.rod->twist == RodTwist::quadratic ? 2 * pc.reference.node_count() - 1
-                                                   : pc.reference.node_count();
+    if (pc.rod)  // twist block in front of the centreline
+      next += rod_twist_block_size(pc.rod->twist, pc.reference.node_count());
     o.twist_first.push_back(twist_first);
     c.first_coordinate = next;
     c.node_count = pc.reference.node_count();

@@ -21,6 +21,12 @@
 
 namespace ancf {
 
+/// Coordinates of a rod's twist block: N node angles and, with the quadratic twist, N − 1
+/// interior ones.
+[[nodiscard]] inline Index rod_twist_block_size(RodTwist twist, Index node_count) {
+  return twist == RodTwist::quadratic ? 2 * node_count - 1 : node_count;
+}
+
 /// The twist part of a cable of the Kirchhoff rod kind (kirchhoff_rod_element.hpp, docs/rod.md).
 /// Node k's twist angle α_k is coordinate twist_first + k; with the quadratic twist, element j's
 /// interior twist β_j is interior_first + j = twist_first + N + j. The twist block
@@ -37,9 +43,8 @@ struct RodData {
   std::vector<std::array<Index, kRodElementCoordinates * kRodElementCoordinates>> slots;
   /// Coordinates an element has in the model: 15, or 14 without β (linear twist).
   [[nodiscard]] int element_coordinates() const { return interior_first >= 0 ? 15 : 14; }
-  /// Coordinates of the twist block: N node angles and, quadratic, N − 1 interior ones.
   [[nodiscard]] Index twist_block_size(Index node_count) const {
-    return interior_first >= 0 ? 2 * node_count - 1 : node_count;
+    return rod_twist_block_size(section.twist, node_count);
   }
 };
 
