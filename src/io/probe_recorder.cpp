@@ -156,22 +156,21 @@ const std::vector<double>& ProbeRecorder::evaluate(const SystemState& state, Wor
         break;
       }
       case Probe::Kind::rod: {
-        // Twist angle α of the node; torque GJ(K₁ − K₁⁰) and the curvatures K₂, K₃ at the middle
-        // of the element starting at the node (the last node: the element ending there).
+        // Twist angle α of the node; the torque GJ(K₁ − K₁⁰) the energy sees (projected over
+        // the element by default) and the curvatures K₂, K₃ at the middle of the element
+        // starting at the node (the last node: the element ending there).
         const CableData& c = model_.cables()[p.target];
         const RodHistory& h = state.rod_history ? *state.rod_history : ws.rods;
         const Index j = std::min<Index>(p.node, c.node_count - 2);
-        const RodPointState now =
-            rod_point_state(c.rod->elements[j], h.element(p.target, j),
-                            rod_element_coordinates(c, j, as_span(state.q)), 0.5);
-        Vec15 e0 = Vec15::Zero();
-        e0.head<12>() = c.rod->elements[j].e0;
-        const RodPointState ref = rod_point_state(
-            c.rod->elements[j],
-            {c.rod->reference_frames[j], c.rod->reference_frames[j + 1], c.rod->reference_omega[j]},
-            e0, 0.5);
+        const RodElementReference& ref = c.rod->elements[j];
+        const RodElementHistory now_history = h.element(p.target, j);
+        const Vec15 e = rod_element_coordinates(c, j, as_span(state.q));
+        const RodPointState now = rod_point_state(ref, now_history, e, 0.5);
+        const RodElementHistory ref_history{
+            c.rod->reference_frames[j], c.rod->reference_frames[j + 1], c.rod->reference_omega[j]};
         row_[k++] = state.q[c.rod->twist_first + p.node];
-        row_[k++] = c.rod->section.torsional_stiffness * (now.curvature[0] - ref.curvature[0]);
+        row_[k++] = c.rod->section.torsional_stiffness *
+                    rod_torsion_strain(c.rod->section, ref, ref_history, now_history, e, 0.5);
         row_[k++] = now.curvature[1];
         row_[k++] = now.curvature[2];
         break;

@@ -13,6 +13,7 @@
 #include "kirchhoff_rod_axial.hpp"
 #include "kirchhoff_rod_local_chain.hpp"
 #include "kirchhoff_rod_strains.hpp"
+#include "kirchhoff_rod_torsion.hpp"
 
 namespace ancf {
 namespace {
@@ -131,6 +132,24 @@ RodPointState rod_point_state(const RodElementReference& ref, const RodElementHi
   out.axial_strain = s[0];
   out.curvature = Vec3(s[1], s[2], s[3]);
   return out;
+}
+
+double rod_torsion_strain(const RodSection& section, const RodElementReference& ref,
+                          const RodElementHistory& reference_history,
+                          const RodElementHistory& history, const Vec15& e, double xi) {
+  if (section.torsion_strain == RodTorsionStrain::projected) {
+    // The values the energy squares at the Gauss points lie on this line
+    // (kirchhoff_rod_torsion.cpp).
+    const auto row = rod_detail::linear_projection_row(ref.xi, ref.weight, xi);
+    double s = 0.0;
+    for (int q = 0; q < kRodGaussPoints; ++q)
+      s += row[q] * (rod_point_state(ref, history, e, ref.xi[q]).curvature[0] - ref.k0[q][0]);
+    return s;
+  }
+  Vec15 e0 = Vec15::Zero();
+  e0.head<12>() = ref.e0;
+  return rod_point_state(ref, history, e, xi).curvature[0] -
+         rod_point_state(ref, reference_history, e0, xi).curvature[0];
 }
 
 RodMomentLoad rod_end_moment(const Mat3& reference, const Vec3& t, const Vec3& moment) {

@@ -16,18 +16,28 @@
 
 namespace ancf::rod_detail {
 
-Eigen::Matrix<double, kRodGaussPoints, kRodGaussPoints> linear_projection(
+std::array<double, kRodGaussPoints> linear_projection_row(
     const std::array<double, kRodGaussPoints>& xi,
-    const std::array<double, kRodGaussPoints>& weight) {
+    const std::array<double, kRodGaussPoints>& weight, double at) {
   double total = 0.0, mean = 0.0, variance = 0.0;
   for (int q = 0; q < kRodGaussPoints; ++q) total += weight[q];
   for (int q = 0; q < kRodGaussPoints; ++q) mean += weight[q] / total * xi[q];
   for (int q = 0; q < kRodGaussPoints; ++q)
     variance += weight[q] / total * (xi[q] - mean) * (xi[q] - mean);
+  std::array<double, kRodGaussPoints> row{};
+  for (int q = 0; q < kRodGaussPoints; ++q)
+    row[q] = weight[q] / total * (1.0 + (at - mean) * (xi[q] - mean) / variance);
+  return row;
+}
+
+Eigen::Matrix<double, kRodGaussPoints, kRodGaussPoints> linear_projection(
+    const std::array<double, kRodGaussPoints>& xi,
+    const std::array<double, kRodGaussPoints>& weight) {
   Eigen::Matrix<double, kRodGaussPoints, kRodGaussPoints> p;
-  for (int i = 0; i < kRodGaussPoints; ++i)
-    for (int q = 0; q < kRodGaussPoints; ++q)
-      p(i, q) = weight[q] / total * (1.0 + (xi[i] - mean) * (xi[q] - mean) / variance);
+  for (int i = 0; i < kRodGaussPoints; ++i) {
+    const auto row = linear_projection_row(xi, weight, xi[i]);
+    for (int q = 0; q < kRodGaussPoints; ++q) p(i, q) = row[q];
+  }
   return p;
 }
 

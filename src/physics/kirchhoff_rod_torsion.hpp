@@ -18,6 +18,12 @@ struct TorsionAtPoint {
 
 using TorsionPoints = std::array<TorsionAtPoint, kRodGaussPoints>;
 
+/// The weights r_q with which the w-orthogonal projection of values at the Gauss points onto
+/// linear functions takes the value Σ_q r_q v_q at ξ = at (row p of P_pq for at = ξ_p).
+[[nodiscard]] std::array<double, kRodGaussPoints> linear_projection_row(
+    const std::array<double, kRodGaussPoints>& xi,
+    const std::array<double, kRodGaussPoints>& weight, double at);
+
 /// P_pq of RodElementReference::torsion_projection from the Gauss abscissae and weights.
 [[nodiscard]] Eigen::Matrix<double, kRodGaussPoints, kRodGaussPoints> linear_projection(
     const std::array<double, kRodGaussPoints>& xi,

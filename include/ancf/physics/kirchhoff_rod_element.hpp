@@ -169,6 +169,17 @@ struct RodPointState {
                                             const RodElementHistory& history, const Vec15& e,
                                             double xi);
 
+/// The torsion strain K₁ − K₁⁰ [1/m] that the section's energy sees at ξ ∈ [0, 1]; the section
+/// torque is GJ times it. RodTorsionStrain::gauss_points: pointwise at ξ, K₁⁰ from the stress-free
+/// state (ref.e0, zero twist, under reference_history: the nodes' reference triads and ω).
+/// RodTorsionStrain::projected: the element's linear projection of K₁ − K₁⁰ over its Gauss points
+/// (RodElementReference::torsion_projection) evaluated at ξ, so that
+/// U_torsion = Σ_p w_p ½ GJ s(ξ_p)². history and e as for rod_point_state.
+[[nodiscard]] double rod_torsion_strain(const RodSection& section, const RodElementReference& ref,
+                                        const RodElementHistory& reference_history,
+                                        const RodElementHistory& history, const Vec15& e,
+                                        double xi);
+
 /// The current ω of an element (continuous from history.omega), for committing history.
 [[nodiscard]] double rod_element_omega(const RodElementHistory& history, const Vec15& e);
 
