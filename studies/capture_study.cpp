@@ -5,12 +5,17 @@
 //                     [--elements N] [--t-end T] [--omega-max DEG_PER_S] [--tilt DEG]
 //                     [--friction MU] [--regularization-speed V] [--step H] [--rtol R] [--rho-inf R] [--axial-damping C]
 //                     [--bending EI] [--bending-damping CB] [--mass-damping ALPHA] [--no-rope-rope] [--index2] [--free-pole]
-//                     [--contact-pattern near|all] [--contact-samples K] [--set KEY=VALUE ...] [--out DIR]
+//                     [--contact-pattern near|all] [--contact-samples K] [--set KEY=VALUE ...]
+//                     [--scene-set KEY=VALUE ...] [--out DIR]
 //                     [--error-control] [--error-rtol R] [--error-atol A] [--h-min H] [--h-max H]
 //                     [--step-change automatic|restart|rescale|rescale_with_velocity|rescale_climbs] [--refresh-on-contact] [--newton-damping N]
 //                     [--fast]
 // --set sets any key of the scene's [integrator] table by its dotted path below it, e.g.
 // --set genalpha.step=5e-4 or --set ida.max_order=2 (VALUE is a TOML value: number, "string", true).
+// --scene-set sets any key of the scene by its dotted path from the file's root, as in the sweep
+// files and SceneError messages, e.g. --scene-set 'rod[0].grading.band_ratio=0.3' or
+// --scene-set 'contact[0].law.stiffness=1.5e7'; applied last (after the flags and --set), and
+// checked by the scene rules as if written in the file.
 // `--contact-pattern all` reserves every candidate contact block (the first design) to measure against.
 // --contact-samples K: samples per element of the rope-shape (shaft, knob) pairs; mesh studies
 // scale it with 1/elements to keep the contact sample spacing fixed (docs/capture.md).
@@ -68,6 +73,7 @@ struct Options {
   long newton_damping = -1;
   std::string contact_pattern;                               // "" (scene's), "near" or "all"
   std::vector<std::pair<std::string, std::string>> settings;  // --set KEY=VALUE under [integrator]
+  std::vector<std::string> scene_settings;                    // --scene-set KEY=VALUE from the root
 };
 
 Options parse(int argc, char** argv) {
@@ -114,6 +120,7 @@ Options parse(int argc, char** argv) {
       if (eq == std::string::npos || eq == 0) throw std::invalid_argument("--set needs KEY=VALUE, got " + kv);
       o.settings.emplace_back(kv.substr(0, eq), kv.substr(eq + 1));
     }
+    else if (a == "--scene-set") o.scene_settings.push_back(value());
     else throw std::invalid_argument("unknown option " + a);
   }
   if (o.integrator != "genalpha" && o.integrator != "ida")
@@ -237,6 +244,7 @@ int main(int argc, char** argv) {
     // --set KEY=VALUE below [integrator]: the io layer's scene overrides (scene_overrides.hpp).
     std::vector<SceneOverride> settings;
     for (const auto& [key, text] : o.settings) settings.push_back({"integrator." + key, text});
+    for (const std::string& kv : o.scene_settings) settings.push_back(parse_scene_override(kv));
     scene = load_scene_from_string(apply_overrides(o), o.scene, settings);
   } catch (const std::exception& e) {
     fmt::print(stderr, "ancf-capture: {}\n", e.what());
@@ -336,6 +344,12 @@ int main(int argc, char** argv) {
       .set("rope_axial_damping", scene.model.cables()[0].section.axial_damping)
       .set("rope_bending_damping", scene.model.cables()[0].section.bending_damping)
       .set("rope_mass_damping", scene.model.cables()[0].section.mass_damping);
+  JsonObject scene_set;  // --scene-set entries in order, key → TOML value text
+  for (const std::string& kv : o.scene_settings) {
+    const SceneOverride v = parse_scene_override(kv);
+    scene_set.set(v.key, v.value);
+  }
+  opts.set("scene_set", scene_set);
   for (const auto& [name, value] : counters) counts.set(name, value);
   meta.set("scene", o.scene)
       .set("status", status)
