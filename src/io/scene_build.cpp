@@ -31,6 +31,19 @@ Index SceneBuild::cable(TableReader& t, std::string_view key) {
   return it->second;
 }
 
+ElementRange SceneBuild::element_range(TableReader& t, std::string_view key, Index cable) {
+  ElementRange r;
+  const auto pair = t.optional_pair(key);
+  if (!pair) return r;
+  const long n = static_cast<long>(cable_initial[cable].element_count());
+  if (pair->first < 0 || pair->second < 1 || pair->first + pair->second > n)
+    t.fail(key, "expected [first, count] with 0 <= first, count >= 1, first + count <= " +
+                    std::to_string(n) + " (elements of cable '" + cable_names[cable] + "')");
+  r.first = pair->first;
+  r.count = pair->second;
+  return r;
+}
+
 Index SceneBuild::body(TableReader& t, std::string_view key) {
   const std::string name = t.string(key);
   auto it = names.bodies.find(name);

@@ -34,20 +34,6 @@ ContactLaw read_law(TableReader t) {
   return law;
 }
 
-ElementRange read_range(TableReader& t, std::string_view key, const SceneBuild& b, Index cable) {
-  ElementRange r;
-  const auto pair = t.optional_pair(key);
-  if (!pair) return r;
-  const long elements = static_cast<long>(b.cable_initial[cable].element_count());
-  if (pair->first < 0 || pair->second < 1 || pair->first + pair->second > elements)
-    t.fail(key, "expected [first, count] with 0 <= first, count >= 1, first + count <= " +
-                    std::to_string(elements) + " (elements of cable '" + b.cable_names[cable] +
-                    "')");
-  r.first = pair->first;
-  r.count = pair->second;
-  return r;
-}
-
 }  // namespace
 
 void read_shapes(TableReader& root, SceneBuild& b) {
@@ -85,7 +71,7 @@ void read_contacts(TableReader& root, SceneBuild& b) {
           "expected exactly one of 'shape' (cable–shape pair) or 'other_cable' (cable–cable pair)");
     const int samples = static_cast<int>(t.integer_or("samples_per_element", 4, 1));
     const ContactLaw law = read_law(t.table("law"));
-    const ElementRange range = read_range(t, "elements", b, cable);
+    const ElementRange range = b.element_range(t, "elements", cable);
     if (!(b.cable_radius[cable] > 0.0))
       t.fail("cable", "cable '" + b.cable_names[cable] +
                           "' needs section.radius > 0 (or a diameter) for contact");
@@ -103,7 +89,7 @@ void read_contacts(TableReader& root, SceneBuild& b) {
       if (!(b.cable_radius[other] > 0.0))
         t.fail("other_cable",
                "cable '" + b.cable_names[other] + "' needs section.radius > 0 for contact");
-      const ElementRange other_range = read_range(t, "other_elements", b, other);
+      const ElementRange other_range = b.element_range(t, "other_elements", other);
       b.build(t, [&] {
         b.builder.add_cable_cable_contact(name, cable, other, law, samples, range, other_range);
       });

@@ -143,7 +143,8 @@ void read_drives(TableReader& root, SceneBuild& b) {
 
 void read_loads(TableReader& root, SceneBuild& b) {
   for (TableReader& t : root.tables("load")) {
-    const std::string kind = t.choice("kind", {"force", "torque", "moment", "spring"});
+    const std::string kind =
+        t.choice("kind", {"force", "distributed", "torque", "moment", "spring"});
     const std::string name = t.string_or("name", t.path());
     b.declare(t, "name", name);
     if (kind == "force") {
@@ -157,6 +158,11 @@ void read_loads(TableReader& root, SceneBuild& b) {
         else
           b.builder.add_point_force(name, at, force);
       });
+    } else if (kind == "distributed") {
+      const Index cable = b.cable(t, "cable");
+      const Vec3 force = t.vec3("force");
+      const ElementRange range = b.element_range(t, "elements", cable);
+      b.build(t, [&] { b.builder.add_distributed_force(name, cable, force, range); });
     } else if (kind == "moment") {
       const NodeRef node = b.node(t, "at");
       if (!b.cable_is_rod[node.cable])

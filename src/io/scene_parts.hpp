@@ -65,6 +65,8 @@ struct SceneBuild {
   AttachmentPoint attachment(TableReader& t, std::string_view key);
   /// "ground" → −1, otherwise a body index.
   Index body_or_ground(TableReader& t, std::string_view key);
+  /// Optional `key = [first, count]` of elements of `cable` (absent: all of them), validated.
+  ElementRange element_range(TableReader& t, std::string_view key, Index cable);
 };
 
 /// A rotation: { axis = [..], angle = rad } or a 3×3 matrix given by rows (orthonormal, det +1).

@@ -26,12 +26,7 @@ void require_samples(const std::string& pair, int samples) {
 // Resolve a range against a cable of n elements: [first, first + count) within [0, n), count ≥ 1.
 std::pair<Index, Index> resolve_range(const std::string& pair, const std::string& cable,
                                       ElementRange r, Index n) {
-  const Index count = r.count < 0 ? n - r.first : r.count;
-  if (r.first < 0 || count < 1 || r.first + count > n)
-    throw ModelError("contact '" + pair + "': element range [" + std::to_string(r.first) + ", " +
-                     std::to_string(r.first + count) + ") is not inside cable '" + cable +
-                     "' (elements 0.." + std::to_string(n - 1) + ")");
-  return {r.first, count};
+  return resolve_element_range("contact '" + pair + "'", cable, r, n);
 }
 
 }  // namespace

@@ -11,6 +11,16 @@
 namespace ancf {
 namespace {
 
+// Consistent nodal loads ∫ Sᵀ w dx of a uniform force per length w [N/m] on elements
+// [first, first + count) of cable c, added to `load` (formulation.md, "Distributed loads").
+void add_line_load(VecX& load, const CableData& c, const Vec3& w, Index first, Index count) {
+  for (Index j = first; j < first + count; ++j) {
+    const Vec4 weights = hermite::load_weights(c.elements[j].length);
+    for (int s = 0; s < 4; ++s)
+      load.segment<3>(c.first_coordinate + 6 * j + 3 * s) += weights[s] * w;
+  }
+}
+
 void validate_section(const std::string& cable, const CableSection& s) {
   auto fail = [&](const std::string& what) { throw ModelError("cable '" + cable + "': " + what); };
   if (!(s.axial_stiffness > 0.0) || !std::isfinite(s.axial_stiffness))
@@ -170,6 +180,16 @@ void ModelBuilder::add_node_force(NodeRef node, const Vec3& force) {
   node = resolve(node, "add_node_force");
   if (!force.allFinite()) throw ModelError("add_node_force: non-finite force");
   node_forces_.emplace_back(node, force);
+}
+
+void ModelBuilder::add_distributed_force(const std::string& name, Index cable,
+                                         const Vec3& force_per_length, ElementRange range) {
+  const PendingCable& c = cable_at(cable, "add_distributed_force");
+  if (!force_per_length.allFinite())
+    throw ModelError("distributed force '" + name + "': non-finite force per length");
+  const auto [first, count] = resolve_element_range("distributed force '" + name + "'", c.name,
+                                                    range, c.reference.element_count());
+  distributed_forces_.push_back({cable, first, count, force_per_length});
 }
 
 AffineVector ModelBuilder::point_expression(const AttachmentPoint& p, const Offsets& o) {
@@ -481,15 +501,12 @@ Model ModelBuilder::finalize() {
       m.q0_.segment<6>(c.first_coordinate + 6 * k) = pc.initial.nodes[k];
       m.v0_.segment<6>(c.first_coordinate + 6 * k) = pc.velocities[k];
     }
-    if (gravity_.squaredNorm() > 0.0) {  // consistent gravity ρA ∫ Sᵀ g dx
-      for (Index j = 0; j < static_cast<Index>(c.elements.size()); ++j) {
-        const Vec4 wts = hermite::load_weights(c.elements[j].length);
-        for (int s = 0; s < 4; ++s)
-          m.constant_load_.segment<3>(c.first_coordinate + 6 * j + 3 * s) +=
-              c.section.mass_per_length * wts[s] * gravity_;
-      }
-    }
+    if (gravity_.squaredNorm() > 0.0)  // consistent gravity ρA ∫ Sᵀ g dx
+      add_line_load(m.constant_load_, c, c.section.mass_per_length * gravity_, 0,
+                    static_cast<Index>(c.elements.size()));
   }
+  for (const DistributedForce& d : distributed_forces_)
+    add_line_load(m.constant_load_, m.cables_[d.cable], d.force_per_length, d.first, d.count);
   for (std::size_t bi = 0; bi < bodies_.size(); ++bi) {
     const PendingBody& pb = bodies_[bi];
     const Index b = m.bodies_[bi].first_coordinate;

@@ -9,6 +9,7 @@
 #include "ancf/core/types.hpp"
 #include "ancf/physics/contact_law.hpp"
 #include "ancf/physics/contact_shapes.hpp"
+#include "ancf/system/element_range.hpp"
 
 namespace ancf {
 
@@ -20,13 +21,6 @@ struct ContactShapeData {
   Owner owner = Owner::ground;
   Index owner_index = -1;      ///< driven-frame or body index (not used for ground)
   Index body_coordinate = -1;  ///< first coordinate of the owning body (Owner::body)
-};
-
-/// Elements [first, first + count) of a cable that a contact pair samples (count < 0: to the end).
-/// Only these are candidates: their coupling blocks are the ones a ContactPattern may hold.
-struct ElementRange {
-  Index first = 0;
-  Index count = -1;
 };
 
 /// Slots of a 12×12 coupling block, column-major (slots[12·col + row]).

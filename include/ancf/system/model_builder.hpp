@@ -72,6 +72,11 @@ class ModelBuilder {
   void set_gravity(const Vec3& g) { gravity_ = g; }
   /// Dead force [N] at a node.
   void add_node_force(NodeRef node, const Vec3& force);
+  /// Dead force per unit reference length [N/m], fixed in space, on the elements `range` of the
+  /// cable or rod `cable` (acting on its centreline), as consistent nodal loads ∫ Sᵀ w dx like
+  /// gravity's ρA g. `name` is for messages. Throws ModelError on a bad cable or range.
+  void add_distributed_force(const std::string& name, Index cable, const Vec3& force_per_length,
+                             ElementRange range = {});
   /// Moment [N m] fixed in space on a rod node's material triad (scaled by the load factor); its
   /// load stiffness enters the iteration matrix (rod_end_moment).
   void add_node_moment(NodeRef node, const Vec3& moment);
@@ -225,6 +230,11 @@ class ModelBuilder {
   std::vector<RevoluteInfo> revolutes_;
   std::vector<PendingForce> forces_;
   std::vector<std::pair<NodeRef, Vec3>> node_forces_;
+  struct DistributedForce {
+    Index cable, first, count;
+    Vec3 force_per_length;
+  };
+  std::vector<DistributedForce> distributed_forces_;
   std::vector<std::pair<NodeRef, Vec3>> node_moments_;
   std::vector<ContactShapeData> shapes_;
   std::vector<CableShapeContactData> cable_shape_contacts_;
