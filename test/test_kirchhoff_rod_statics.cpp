@@ -360,6 +360,7 @@ TEST(KirchhoffRodStatics, AssembledMatrixMatchesResidualDifferences) {
                               rod_frames_toward_axis(g, Vec3::Zero(), Vec3::UnitZ()));
   clamp(b, rod, g);
   b.add_node_moment({rod, -1}, Vec3(0.3, -0.2, 0.5));
+  b.add_distributed_moment("m", rod, Vec3(-0.4, 0.6, 0.2), {1, 2});  // its load stiffness too
   const Model m = b.finalize();
   SystemState s = SystemState::initial(m);
   std::mt19937 rng(2);

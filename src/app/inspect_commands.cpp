@@ -95,6 +95,11 @@ int info_command(const std::string& scene_path) {
                m.spring_dampers().size(), m.point_forces().size(), m.body_torques().size(),
                m.drives().size());
     if (!m.rod_moments().empty()) fmt::print("rod moments  {}\n", m.rod_moments().size());
+    for (const RodDistributedMomentData& d : m.rod_distributed_moments())
+      fmt::print(
+          "  distributed moment on rod '{}', elements {}..{}: [{:.4g}, {:.4g}, {:.4g}] N m/m\n",
+          m.cables()[d.cable].name, d.first, d.first + d.count - 1, d.moment_per_length.x(),
+          d.moment_per_length.y(), d.moment_per_length.z());
     fmt::print("contact      {} pairs, {} shapes\n", m.contact_pair_count(), m.shapes().size());
     for (const CableShapeContactData& p : m.cable_shape_contacts())
       fmt::print("  {:<18} cable '{}' - shape '{}', elements {}..{}, {} samples/element\n", p.name,

@@ -1,5 +1,8 @@
 // [[joint]]: constraints on cable nodes (pin, align_slope, clamp, attach, join) and rigid-body
-// joints (spherical, revolute, fixed) to ground or between bodies; [[drive]] on revolute joints.
+// joints (spherical, revolute, fixed) to ground or between bodies; [[drive]] on revolute joints;
+// [[load]] (nodal, distributed, body and spring loads).
+#include <optional>
+
 #include "scene_parts.hpp"
 
 namespace ancf::io {
@@ -160,9 +163,17 @@ void read_loads(TableReader& root, SceneBuild& b) {
       });
     } else if (kind == "distributed") {
       const Index cable = b.cable(t, "cable");
-      const Vec3 force = t.vec3("force");
+      const std::optional<Vec3> force = t.optional_vec3("force");
+      const std::optional<Vec3> moment = t.optional_vec3("moment");
+      if (!force && !moment)
+        t.fail_here("a distributed load needs 'force' [N/m] or 'moment' [N m/m] (or both)");
+      if (moment && !b.cable_is_rod[cable])
+        t.fail("moment", "a distributed moment acts on a [[rod]] (a cable has no material triad)");
       const ElementRange range = b.element_range(t, "elements", cable);
-      b.build(t, [&] { b.builder.add_distributed_force(name, cable, force, range); });
+      b.build(t, [&] {
+        if (force) b.builder.add_distributed_force(name, cable, *force, range);
+        if (moment) b.builder.add_distributed_moment(name, cable, *moment, range);
+      });
     } else if (kind == "moment") {
       const NodeRef node = b.node(t, "at");
       if (!b.cable_is_rod[node.cable])

@@ -19,18 +19,6 @@ namespace ancf {
 namespace {
 using namespace rod_detail;
 
-template <class T>
-std::array<T, 15> to_array(const Vec15& e) {
-  std::array<T, 15> out;
-  for (int i = 0; i < 15; ++i) {
-    if constexpr (std::is_same_v<T, double>)
-      out[i] = e[i];
-    else
-      out[i] = T::variable(e[i], i);
-  }
-  return out;
-}
-
 Vec3 to_vec3(const V3<double>& v) {
   return {v.x, v.y, v.z};
 }

@@ -9,6 +9,7 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "ancf/core/types.hpp"
 #include "ancf/physics/jet.hpp"
@@ -106,6 +107,19 @@ ElementFrame<T> element_frame(const RodElementHistory& h, const V3<T>& t1, const
 template <class T>
 ElementFrame<T> element_frame(const RodElementHistory& h, const std::array<T, 15>& e) {
   return element_frame(h, block(e, 1), block(e, 3), e[13]);
+}
+
+// The 15 element coordinates as scalars of type T: doubles, or jets with e_i variable number i.
+template <class T>
+std::array<T, 15> to_array(const Vec15& e) {
+  std::array<T, 15> out;
+  for (int i = 0; i < 15; ++i) {
+    if constexpr (std::is_same_v<T, double>)
+      out[i] = e[i];
+    else
+      out[i] = T::variable(e[i], i);
+  }
+  return out;
 }
 
 // The shape-function data of one point ξ of an element of length l.

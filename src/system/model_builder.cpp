@@ -547,6 +547,7 @@ Model ModelBuilder::finalize() {
     d.coordinates[3] = o.twist(node);
     m.rod_moments_.push_back(d);
   }
+  m.rod_distributed_moments_ = distributed_moments_;
   finalize_contacts(o, m);
 
   check_redundancy(m);

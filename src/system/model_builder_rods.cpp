@@ -67,6 +67,19 @@ void ModelBuilder::add_node_moment(NodeRef node, const Vec3& moment) {
   node_moments_.emplace_back(node, moment);
 }
 
+void ModelBuilder::add_distributed_moment(const std::string& name, Index cable,
+                                          const Vec3& moment_per_length, ElementRange range) {
+  const PendingCable& c = cable_at(cable, "add_distributed_moment");
+  if (!c.rod)
+    throw ModelError("distributed moment '" + name + "': cable '" + c.name +
+                     "' is not a rod (a cable has no material triad to load)");
+  if (!moment_per_length.allFinite())
+    throw ModelError("distributed moment '" + name + "': non-finite moment per length");
+  const auto [first, count] = resolve_element_range("distributed moment '" + name + "'", c.name,
+                                                    range, c.reference.element_count());
+  distributed_moments_.push_back({cable, first, count, moment_per_length});
+}
+
 void ModelBuilder::fix_twist(std::string name, NodeRef node) {
   node = resolve(node, "fix_twist");
   if (!cables_[node.cable].rod)

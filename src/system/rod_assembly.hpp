@@ -1,7 +1,7 @@
 // The Kirchhoff rod contributions to the residual and iteration matrix (private to assembly.cpp,
 // which includes it after its scatter targets): element forces and matrices under the
 // workspace's committed history, centreline and twist inertia, mass-proportional damping of the
-// centreline and the end moments with their load stiffness.
+// centreline and the end and distributed moments with their load stiffness.
 #pragma once
 
 #include "ancf/system/assembly.hpp"
@@ -22,6 +22,22 @@ void for_each_rod_element(const Model& model, const VecX& q, const VecX& v, Visi
                               ? rod_element_coordinates(c, j, as_span(v))
                               : Vec15(Vec15::Zero());
       visit(ci, j, c, e, e_dot);
+    }
+  }
+}
+
+// Evaluate every element under a distributed moment into ws.rod_moment (its Jacobian if asked)
+// and visit it.
+template <class Visitor>
+void for_each_distributed_moment(const Model& model, const VecX& q, Workspace& ws, bool jacobian,
+                                 Visitor&& visit) {
+  for (const RodDistributedMomentData& d : model.rod_distributed_moments()) {
+    const CableData& c = model.cables()[d.cable];
+    for (Index j = d.first; j < d.first + d.count; ++j) {
+      rod_distributed_moment(c.rod->elements[j], ws.rods.element(d.cable, j),
+                             rod_element_coordinates(c, j, as_span(q)), d.moment_per_length,
+                             jacobian, ws.rod_moment);
+      visit(c, j);
     }
   }
 }
@@ -58,6 +74,10 @@ inline void add_rod_residual(const Model& model, const SystemState& state, doubl
                        Vec3(state.q[t], state.q[t + 1], state.q[t + 2]), d.moment);
     for (int k = 0; k < 4; ++k) r[d.coordinates[k]] -= load_factor * load.force[k];
   }
+  for_each_distributed_moment(model, state.q, ws, false, [&](const CableData& c, Index j) {
+    for (int i = 0; i < c.rod->element_coordinates(); ++i)
+      r[c.rod_coordinate(j, i)] -= load_factor * ws.rod_moment.force[i];
+  });
 }
 
 // w_q K + w_v D + w_a M of the rods and −w_q s ∂Q/∂q of the moments into the target t.
@@ -102,6 +122,13 @@ void add_rod_matrix(const Model& model, const SystemState& state, const Iteratio
       for (int row = 0; row < 4; ++row)
         t.position(d.slots[4 * col + row]) -= w.w_q * w.load_factor * load.jacobian(row, col);
   }
+  for_each_distributed_moment(model, state.q, ws, true, [&](const CableData& c, Index j) {
+    const int n = c.rod->element_coordinates();
+    for (int col = 0; col < n; ++col)
+      for (int row = 0; row < n; ++row)
+        t.position(c.rod->slots[j][n * col + row]) -=
+            w.w_q * w.load_factor * ws.rod_moment.jacobian(row, col);
+  });
 }
 
 // Strain energy of the rods under `history` [J].

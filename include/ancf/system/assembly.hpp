@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "ancf/physics/cable_contact.hpp"
+#include "ancf/physics/kirchhoff_rod_distributed_moment.hpp"
 #include "ancf/system/model.hpp"
 #include "ancf/system/rod_history.hpp"
 
@@ -39,6 +40,7 @@ struct Workspace {
   /// Changed only by commit_rod_history() on accepted states.
   RodHistory rods;
   RodElementResult rod;
+  RodDistributedMomentLoad rod_moment;  ///< scratch of distributed moments
   // Contact scratch, sized here so that a time step allocates nothing: element and cable boxes
   // of the cables in contact pairs (empty for the others), candidate elements, one sample result.
   std::vector<std::vector<Aabb>> element_boxes;

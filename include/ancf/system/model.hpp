@@ -78,6 +78,14 @@ struct RodMomentData {
   std::array<Index, 16> slots{};
 };
 
+/// A distributed moment per unit reference length [N m/m], fixed in space, on the elements
+/// [first, first + count) of rod `cable` (kirchhoff_rod_distributed_moment.hpp), scaled by the
+/// load factor. Its load stiffness uses the rod elements' blocks (no pattern entries of its own).
+struct RodDistributedMomentData {
+  Index cable = 0, first = 0, count = 0;
+  Vec3 moment_per_length = Vec3::Zero();
+};
+
 /// A twist row of a rod node tied to a body, frame or space (rod_twist_constraint.hpp). The k-th
 /// is multiplier rows().size() + k (after all dot rows). It is evaluated under the committed
 /// reference triad of node `node` of cable `cable` (RodHistory).
@@ -147,6 +155,9 @@ class Model {
   }
 
   [[nodiscard]] const std::vector<RodMomentData>& rod_moments() const { return rod_moments_; }
+  [[nodiscard]] const std::vector<RodDistributedMomentData>& rod_distributed_moments() const {
+    return rod_distributed_moments_;
+  }
   /// True if some cable is a rod: the model keeps history (RodHistory, committed per step).
   [[nodiscard]] bool has_rods() const {
     for (const CableData& c : cables_)
@@ -216,6 +227,7 @@ class Model {
   std::vector<ForceElementData<BodyTorque>> torques_;
   std::vector<ForceElementData<RevoluteDrive>> drives_;
   std::vector<RodMomentData> rod_moments_;
+  std::vector<RodDistributedMomentData> rod_distributed_moments_;
   std::vector<ContactShapeData> shapes_;
   std::vector<CableShapeContactData> cable_shape_contacts_;
   std::vector<CableCableContactData> cable_cable_contacts_;

@@ -77,6 +77,11 @@ class ModelBuilder {
   /// gravity's ρA g. `name` is for messages. Throws ModelError on a bad cable or range.
   void add_distributed_force(const std::string& name, Index cable, const Vec3& force_per_length,
                              ElementRange range = {});
+  /// Moment per unit reference length [N m/m] fixed in space on the material triads of the
+  /// elements `range` of the rod `cable` (scaled by the load factor; its load stiffness enters
+  /// the iteration matrix: rod_distributed_moment). Throws ModelError on a cable that is no rod.
+  void add_distributed_moment(const std::string& name, Index cable, const Vec3& moment_per_length,
+                              ElementRange range = {});
   /// Moment [N m] fixed in space on a rod node's material triad (scaled by the load factor); its
   /// load stiffness enters the iteration matrix (rod_end_moment).
   void add_node_moment(NodeRef node, const Vec3& moment);
@@ -235,6 +240,7 @@ class ModelBuilder {
     Vec3 force_per_length;
   };
   std::vector<DistributedForce> distributed_forces_;
+  std::vector<RodDistributedMomentData> distributed_moments_;
   std::vector<std::pair<NodeRef, Vec3>> node_moments_;
   std::vector<ContactShapeData> shapes_;
   std::vector<CableShapeContactData> cable_shape_contacts_;
