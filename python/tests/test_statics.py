@@ -94,3 +94,22 @@ def test_rod_quarter_circle_out_of_plane():
     tip_z = q[twist_block + 6 * n + 2]
     exact = force * (np.pi / 4 + (0.75 * np.pi - 2) / 0.7)
     assert abs(tip_z / exact - 1.0) < 1e-5
+
+
+def test_rod_uniform_distributed_torque():
+    """A straight rod (L = 2, GJ = 2) clamped with its twist under a uniform distributed torque
+    m = 1 N m/m along its axis ([[load]] kind = "distributed", moment): φ(s) = m(Ls − s²/2)/GJ,
+    1 rad at the tip, which the quadratic twist holds exactly (test_distributed_load: 1e-16)."""
+    n, length, gj, m = 3, 2.0, 2.0, 1.0
+    b = ancf.SceneBuilder("twisted by a distributed torque")
+    b.rod(name="shaft", elements=n,
+          geometry={"kind": "straight", "start": [0, 0, 0], "end": [length, 0, 0]},
+          frame={"normal": [0, 1, 0]},
+          section={"EA": 1e7, "EI": 3.0, "GJ": gj, "mass_per_length": 1.0,
+                   "polar_inertia": 1e-3})
+    b.joint(name="root", kind="clamp", at={"cable": "shaft", "node": 0})
+    b.load(kind="distributed", cable="shaft", moment=[m, 0.0, 0.0])
+    q = ancf.solve_statics(b.build(), load_steps=1)["q"]
+    s = np.linspace(0.0, length, n + 1)
+    node_angles = q[: n + 1]  # the twist block comes first: node angles, then interior twists
+    assert np.max(np.abs(node_angles - m * (length * s - 0.5 * s * s) / gj)) < 1e-12
