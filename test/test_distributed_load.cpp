@@ -29,14 +29,15 @@ double tip_deflection(double q, double b) {
   return q / (6.0 * kEi) * (0.75 * l * l * l * l - l * b * b * b + 0.25 * b * b * b * b);
 }
 
-// Tip deflection along −z of a clamped cable (rod = false) or rod with q along −z on `range`.
-double solved_tip(bool rod, Index elements, double q, ElementRange range) {
+// The test beam along x from the origin (EA = kEa, EI = kEi, GJ = 2, ρA = 1, r = 0.01 m, ρJ =
+// ρA r²/2 as a scene's default), a cable (rod = false) or a rod; clamped at node 0 if asked.
+Index add_beam(ModelBuilder& b, bool rod, Index elements, bool clamped) {
   const CableGeometry g = straight_cable(Vec3::Zero(), Vec3(kLength, 0, 0), elements);
-  ModelBuilder b;
   CableSection section;
   section.axial_stiffness = kEa;
   section.bending_stiffness = kEi;
   section.mass_per_length = 1.0;
+  section.radius = 0.01;
   Index c = 0;
   if (rod) {
     RodSection r;
@@ -44,21 +45,35 @@ double solved_tip(bool rod, Index elements, double q, ElementRange range) {
     r.torsional_stiffness = 2.0;
     r.bending_stiffness_2 = r.bending_stiffness_3 = kEi;
     r.mass_per_length = 1.0;
-    r.polar_inertia = 1e-3;
+    r.polar_inertia = 5e-5;
     c = b.add_rod("beam", g, section, r, rod_frames_with_normal(g, Vec3::UnitY()));
-    b.fix_twist("clamp.twist", {c, 0});
+    if (clamped) b.fix_twist("clamp.twist", {c, 0});
   } else {
     c = b.add_cable("beam", g, section);
   }
-  b.pin("clamp.r", {c, 0}, Vec3::Zero());
-  b.align_slope("clamp.t", {c, 0}, Vec3::UnitX());
-  b.add_distributed_force("q", c, Vec3(0, 0, -q), range);
-  const Model m = b.finalize();
+  if (clamped) {
+    b.pin("clamp.r", {c, 0}, Vec3::Zero());
+    b.align_slope("clamp.t", {c, 0}, Vec3::UnitX());
+  }
+  return c;
+}
+
+// Equilibrium of the built model (Newton to 2e-15 m: ≈ 3e-9 of the smallest tip deflection here).
+VecX solved(const Model& m) {
   StaticModelProblem problem(m);
-  StaticSolver solver(problem, {.increment_tolerance = 1e-15});  // 2e-15 m: 3e-9 of the tip
+  StaticSolver solver(problem, {.increment_tolerance = 1e-15});
   VecX y = problem.initial_guess();
   solver.solve(y);
-  return -y[m.node_coordinate(c, -1) + 2];
+  return y;
+}
+
+// Tip deflection along −z of the clamped beam with q along −z on `range`.
+double solved_tip(bool rod, Index elements, double q, ElementRange range) {
+  ModelBuilder b;
+  const Index c = add_beam(b, rod, elements, true);
+  b.add_distributed_force("q", c, Vec3(0, 0, -q), range);
+  const Model m = b.finalize();
+  return -solved(m)[m.node_coordinate(c, -1) + 2];
 }
 
 TEST(DistributedLoad, CantileverTipIsTheEulerBernoulliOne) {
@@ -107,34 +122,17 @@ TEST(DistributedLoad, NodalLoadsAreConsistent) {
   EXPECT_LE((moment - Vec3(2.0, 0, 0).cross(2.0 * w)).norm(), 1e-14 * 4 * w.norm());  // at x = 2
 }
 
-// A rod cantilever (clamped with its twist) under a distributed moment m [N m/m] from the scene.
+// The clamped rod beam under a distributed moment m [N m/m].
 struct RodCantilever {
   Model model;
   VecX y;
 };
 RodCantilever solved_rod(Index elements, const Vec3& moment_per_length) {
-  const CableGeometry g = straight_cable(Vec3::Zero(), Vec3(kLength, 0, 0), elements);
   ModelBuilder b;
-  RodSection r;
-  r.axial_stiffness = kEa;
-  r.torsional_stiffness = 2.0;
-  r.bending_stiffness_2 = r.bending_stiffness_3 = kEi;
-  r.mass_per_length = 1.0;
-  r.polar_inertia = 1e-3;
-  CableSection section;
-  section.axial_stiffness = kEa;
-  section.bending_stiffness = kEi;
-  section.mass_per_length = 1.0;
-  const Index c = b.add_rod("beam", g, section, r, rod_frames_with_normal(g, Vec3::UnitY()));
-  b.pin("clamp.r", {c, 0}, Vec3::Zero());
-  b.align_slope("clamp.t", {c, 0}, Vec3::UnitX());
-  b.fix_twist("clamp.twist", {c, 0});
+  const Index c = add_beam(b, true, elements, true);
   b.add_distributed_moment("m", c, moment_per_length);
   RodCantilever out{b.finalize(), {}};
-  StaticModelProblem problem(out.model);
-  StaticSolver solver(problem, {.increment_tolerance = 1e-15});
-  out.y = problem.initial_guess();
-  solver.solve(out.y);
+  out.y = solved(out.model);
   return out;
 }
 
@@ -197,20 +195,8 @@ elements = [1, 2]
 )";
   const Scene scene = load_scene_from_string(text, "distributed.toml");
   const Model& m = scene.model;
-  const CableGeometry g = straight_cable(Vec3::Zero(), Vec3(2, 0, 0), 4);
   ModelBuilder b;
-  RodSection r;
-  r.axial_stiffness = 1e7;
-  r.torsional_stiffness = 2.0;
-  r.bending_stiffness_2 = r.bending_stiffness_3 = 3.0;
-  r.mass_per_length = 1.0;
-  r.polar_inertia = 5e-5;  // ρA r²/2, the scene's default
-  CableSection cs;
-  cs.radius = 0.01;
-  cs.axial_stiffness = 1e7;
-  cs.bending_stiffness = 3.0;
-  cs.mass_per_length = 1.0;
-  const Index c = b.add_rod("beam", g, cs, r, rod_frames_with_normal(g, Vec3::UnitY()));
+  const Index c = add_beam(b, true, 4, false);
   b.add_distributed_force("wind", c, Vec3(0, 0.5, -1.5), {1, 2});
   const Model expected = b.finalize();
   ASSERT_EQ(m.rod_distributed_moments().size(), 1u);

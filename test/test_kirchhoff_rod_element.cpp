@@ -90,6 +90,13 @@ Vec15 with_twist(const Vec12& e, double a1, double a2, double beta = 0.0) {
   return x;
 }
 
+// The case's centreline perturbed by amp (random, from rng) with twist (α₁, α₂, β).
+Vec15 deformed(const Vec12& e0, std::mt19937& rng, double amp, double a1, double a2, double beta) {
+  Vec15 e = with_twist(e0, a1, a2, beta);
+  for (int i = 0; i < 12; ++i) e[i] += amp * random_vec3(rng, 1.0)[i % 3];
+  return e;
+}
+
 // Rigid rotation Q of coordinates (positions about the origin) and of the history.
 Vec15 rotated(const Mat3& q, const Vec15& e) {
   Vec15 out = e;
@@ -174,8 +181,7 @@ TEST(KirchhoffRod, StrainsAreThoseOfTheInterpolatedTriad) {
   for (const Case& c : cases()) {
     RodElementHistory h = c.history;
     const auto ref = RodElementReference::from_reference(c.e0, c.length, h);
-    Vec15 e = with_twist(c.e0, 0.3, -0.5, 0.4);
-    for (int i = 0; i < 12; ++i) e[i] += 0.03 * random_vec3(rng, 1.0)[i % 3];
+    const Vec15 e = deformed(c.e0, rng, 0.03, 0.3, -0.5, 0.4);
     for (const double xi : {0.2, 0.5, 0.8}) {
       Vec3 a0 = Vec3::Zero();
       const Vec4 d1 = hermite::first_derivative(xi, c.length);
@@ -207,10 +213,8 @@ TEST(KirchhoffRod, TorsionStrainIsTheOneTheEnergySees) {
   for (const Case& c : cases()) {
     RodElementHistory reference = c.history;
     const auto ref = RodElementReference::from_reference(c.e0, c.length, reference);
-    Vec15 e = with_twist(c.e0, 1.2, -1.9, 0.9);
-    for (int i = 0; i < 12; ++i) e[i] += 0.1 * random_vec3(rng, 1.0)[i % 3];
     const Mat3 q = random_rotation(rng);
-    e = rotated(q, e);
+    const Vec15 e = rotated(q, deformed(c.e0, rng, 0.1, 1.2, -1.9, 0.9));
     const RodElementHistory now = rotated(q, reference);
     double energy[2] = {0.0, 0.0};
     for (const RodTorsionStrain torsion :
@@ -258,9 +262,8 @@ std::vector<FdCase> fd_cases() {
     const auto ref = RodElementReference::from_reference(c.e0, c.length, h);
     for (int kind = 0; kind < 3; ++kind) {
       const double amp = kind == 0 ? 0.02 : 0.1;
-      Vec15 e =
-          with_twist(c.e0, kind == 0 ? 0.1 : 1.2, kind == 0 ? -0.2 : -1.9, kind == 0 ? 0.05 : 0.9);
-      for (int i = 0; i < 12; ++i) e[i] += amp * random_vec3(rng, 1.0)[i % 3];
+      Vec15 e = deformed(c.e0, rng, amp, kind == 0 ? 0.1 : 1.2, kind == 0 ? -0.2 : -1.9,
+                         kind == 0 ? 0.05 : 0.9);
       RodElementHistory hk = h;
       if (kind == 2) {
         const Mat3 q = random_rotation(rng);
