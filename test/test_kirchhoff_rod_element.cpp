@@ -136,8 +136,7 @@ TEST(KirchhoffRod, RigidRotationOfCurvedTwistedRod) {
     const auto ref = RodElementReference::from_reference(c.e0, c.length, h);
     const RodSection s = section(false);
     // A deformed, twisted state and its rigidly rotated copy (history rotated with it).
-    Vec15 e = with_twist(c.e0, 0.2, -0.3, 0.15);
-    for (int i = 0; i < 12; ++i) e[i] += 0.02 * random_vec3(rng, 1.0)[i % 3];
+    const Vec15 e = deformed(c.e0, rng, 0.02, 0.2, -0.3, 0.15);
     const auto r0 = eval(s, ref, h, e, Vec15::Zero(), false, false);
     for (int trial = 0; trial < 3; ++trial) {
       const Mat3 q = random_rotation(rng);
