@@ -415,7 +415,8 @@ TEST(KirchhoffRod, EndMomentIsVirtualWorkOfTheMoment) {
 
 // The distributed moment: Q·δe equals Σ_p w_p m·δθ(ξ_p), with δθ the virtual rotation of the
 // strains' material triad (central differences of rod_point_state), on curved, twisted and
-// rotated states; the load Jacobian is ∂Q/∂e (check_jacobian's error-estimate tolerance).
+// rotated states; the load Jacobian is ∂Q/∂e (check_jacobian's error-estimate tolerance); both
+// kernels agree.
 TEST(KirchhoffRod, DistributedMomentIsVirtualWorkOfTheMoment) {
   std::mt19937 rng(17);
   for (const FdCase& c : fd_cases()) {
@@ -424,6 +425,12 @@ TEST(KirchhoffRod, DistributedMomentIsVirtualWorkOfTheMoment) {
     rod_distributed_moment(c.ref, c.history, c.e, m, true, full);
     rod_distributed_moment(c.ref, c.history, c.e, m, false, force_only);
     EXPECT_LE((full.force - force_only.force).norm(), 16 * kEps * full.force.norm()) << c.name;
+    // The local-chain kernel (default) and jets in all 15 coordinates: the same Q and ∂Q/∂e up
+    // to round-off of their different operation orders.
+    RodDistributedMomentLoad jets;
+    rod_distributed_moment(c.ref, c.history, c.e, m, true, jets, RodKernel::element_jets);
+    EXPECT_LE((full.force - jets.force).norm(), 1e3 * kEps * jets.force.norm()) << c.name;
+    EXPECT_LE((full.jacobian - jets.jacobian).norm(), 1e3 * kEps * jets.jacobian.norm()) << c.name;
     for (int trial = 0; trial < 3; ++trial) {
       Vec15 de;
       for (int i = 0; i < 15; ++i) de[i] = random_vec3(rng, 1.0)[i % 3];

@@ -183,6 +183,32 @@ inline Vec3 centreline_slope(const Vec4& d1, const double* x) {
   return a;
 }
 
+// The untwisted frame at a point from r_x = a: g = a/|a| and the SR(Λ̄₁ → g) columns g₂, g₃ of
+// the element frame's node-1 triad, with |a|², |a| and 1/(1 + t̂₁·g) for the strains.
+template <class T>
+struct PointFrame {
+  T saa, na, ic;
+  V3<T> g, g2, g3;
+};
+template <class T>
+PointFrame<T> point_frame(const ElementFrame<T>& f, const V3<T>& a) {
+  using std::sqrt;
+  PointFrame<T> p;
+  p.saa = dot(a, a);
+  p.na = sqrt(p.saa);
+  p.g = scale(1.0 / p.na, a);
+  p.ic = checked_inverse_denominator(1.0 + dot(f.t1, p.g), "centreline tangent");
+  p.g2 = sr_column(f.t1, f.n2, p.g, p.ic);
+  p.g3 = sr_column(f.t1, f.n3, p.g, p.ic);
+  return p;
+}
+
+// The material triad [g, c g₂ + s g₃, c g₃ − s g₂] at a point, c = cos ψ, s = sin ψ.
+template <class T>
+PointTriad<T> material_triad(const PointFrame<T>& p, const T& c, const T& s) {
+  return {p.g, scale(c, p.g2) + scale(s, p.g3), scale(c, p.g3) - scale(s, p.g2)};
+}
+
 // Strains (ε, K₁, K₂, K₃) at a point from r_x = a, r_xx = b, the element frame, α₁ and β.
 template <class T>
 std::array<T, 4> point_strains(const PointData& pd, const ElementFrame<T>& f, const V3<T>& a,
@@ -190,22 +216,17 @@ std::array<T, 4> point_strains(const PointData& pd, const ElementFrame<T>& f, co
                                PointTriad<T>* triad = nullptr) {
   using std::cos;
   using std::sin;
-  using std::sqrt;
   const double ij = pd.inv_j0, xi = pd.xi;
-  const T saa = dot(a, a);
-  const T na = sqrt(saa);
-  const V3<T> g = scale(1.0 / na, a);
-  const V3<T> kappa = scale(1.0 / saa, cross(a, b));  // κ = r_x × r_xx / |r_x|² (per dx)
-  const T ic = checked_inverse_denominator(1.0 + dot(f.t1, g), "centreline tangent");
-  const V3<T> g2 = sr_column(f.t1, f.n2, g, ic), g3 = sr_column(f.t1, f.n3, g, ic);
-  const T k2 = dot(kappa, g2), k3 = dot(kappa, g3);
+  const PointFrame<T> p = point_frame(f, a);
+  const V3<T> kappa = scale(1.0 / p.saa, cross(a, b));  // κ = r_x × r_xx / |r_x|² (per dx)
+  const T k2 = dot(kappa, p.g2), k3 = dot(kappa, p.g3);
   const T psi = twist_angle(xi, alpha1, f.zeta, beta);
   const T c = cos(psi), s = sin(psi);
   // K₁: ψ_x plus the twist rate of the SR frame, −(t̂₁·κ)/(1 + t̂₁·g₁).
   const T k1 =
-      twist_increment(xi, alpha1, f.zeta, beta) * (1.0 / pd.length) - dot(f.t1, kappa) * ic;
-  if (triad) *triad = {g, scale(c, g2) + scale(s, g3), scale(c, g3) - scale(s, g2)};
-  return {na * ij - 1.0, k1 * ij, (c * k2 + s * k3) * ij, (c * k3 - s * k2) * ij};
+      twist_increment(xi, alpha1, f.zeta, beta) * (1.0 / pd.length) - dot(f.t1, kappa) * p.ic;
+  if (triad) *triad = material_triad(p, c, s);
+  return {p.na * ij - 1.0, k1 * ij, (c * k2 + s * k3) * ij, (c * k3 - s * k2) * ij};
 }
 
 // The same from the element coordinates.

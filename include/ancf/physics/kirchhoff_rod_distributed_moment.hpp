@@ -21,9 +21,12 @@ struct RodDistributedMomentLoad {
 };
 
 /// Evaluate under `history` (as evaluate_rod_element). `jacobian` only if requested. No heap
-/// allocation. Throws std::domain_error as evaluate_rod_element does.
+/// allocation. Throws std::domain_error as evaluate_rod_element does. `kernel` as for the element:
+/// local_chain (jets in the triad's nine local variables, chained to e) or element_jets (jets in
+/// all 15 coordinates; the first version, kept for comparison); both agree to round-off.
 void rod_distributed_moment(const RodElementReference& ref, const RodElementHistory& history,
                             const Vec15& e, const Vec3& moment_per_length, bool jacobian,
-                            RodDistributedMomentLoad& out);
+                            RodDistributedMomentLoad& out,
+                            RodKernel kernel = RodKernel::local_chain);
 
 }  // namespace ancf
