@@ -12,6 +12,7 @@
 #include <cmath>
 
 #include "ancf/physics/jet.hpp"
+#include "kirchhoff_rod_staged_frame.hpp"
 #include "kirchhoff_rod_strains.hpp"
 
 namespace ancf {
@@ -63,18 +64,18 @@ template <bool S>
 void local_chain(const RodElementReference& ref, const RodElementHistory& history, const Vec15& e,
                  const Vec3& m, RodDistributedMomentLoad& out) {
   using J = Jet<kLocal, S>;
-  // ζ = α₂ + ω(t₁, t₂) with its derivatives in e, once per element.
-  const Jet<15, S> zeta = element_frame(history, to_array<Jet<15, S>>(e)).zeta;
-  // Node 1's untwisted frame as jets in t₁ (y[3, 6)); t₂ and α₂ enter only through ζ.
-  const V3<J> t1{J::variable(e[3], kT1), J::variable(e[4], kT1 + 1), J::variable(e[5], kT1 + 2)};
-  ElementFrame<J> f = element_frame(history, t1, constant<J>(Vec3(e[9], e[10], e[11])), J(e[13]));
-  f.zeta = J::variable(zeta.v, kZeta);
+  // Node 1's untwisted frame as jets in t₁ (y[3, 6)) and ζ = α₂ + ω in (t₁, t₂), once per element.
+  const NodeFrame<S> staged = staged_element_frame<S>(history, e);
+  const ElementFrame<J> f{promote<kLocal>(staged.t1, kT1), promote<kLocal>(staged.n2, kT1),
+                          promote<kLocal>(staged.n3, kT1), J::variable(staged.zeta.v, kZeta),
+                          J(0.0)};
   const J alpha1 = J::variable(e[12], kAlpha1), beta = J::variable(e[14], kBeta);
   const Mat3 skew_m = skew(m);
   Eigen::Matrix<double, kLocal, 15> b = Eigen::Matrix<double, kLocal, 15>::Zero();  // B_p
   b.block<3, 3>(kT1, 3).setIdentity();
   b(kAlpha1, 12) = 1.0;
-  b.row(kZeta) = zeta.g.transpose();
+  for (int i = 0; i < 6; ++i) b(kZeta, kTangents[i]) = staged.zeta.g[i];
+  b(kZeta, 13) = 1.0;
   b(kBeta, 14) = 1.0;
   for (int p = 0; p < kRodGaussPoints; ++p) {
     const PointData pd = point_data(ref, p);
@@ -93,7 +94,9 @@ void local_chain(const RodElementReference& ref, const RodElementHistory& histor
     out.force.noalias() += b.transpose() * q;
     if constexpr (S) {
       out.jacobian.noalias() += b.transpose() * h * b;
-      out.jacobian.noalias() += q[kZeta] * zeta.h;
+      for (int j = 0; j < 6; ++j)
+        for (int i = 0; i < 6; ++i)
+          out.jacobian(kTangents[i], kTangents[j]) += q[kZeta] * staged.zeta.h(i, j);
     }
   }
 }
