@@ -31,7 +31,8 @@ double tip_deflection(double q, double b) {
 
 // The test beam along x from the origin (EA = kEa, EI = kEi, GJ = 2, ρA = 1, r = 0.01 m, ρJ =
 // ρA r²/2 as a scene's default), a cable (rod = false) or a rod; clamped at node 0 if asked.
-Index add_beam(ModelBuilder& b, bool rod, Index elements, bool clamped) {
+Index add_beam(ModelBuilder& b, bool rod, Index elements, bool clamped,
+               RodTwist twist = RodTwist::quadratic) {
   const CableGeometry g = straight_cable(Vec3::Zero(), Vec3(kLength, 0, 0), elements);
   CableSection section;
   section.axial_stiffness = kEa;
@@ -46,6 +47,7 @@ Index add_beam(ModelBuilder& b, bool rod, Index elements, bool clamped) {
     r.bending_stiffness_2 = r.bending_stiffness_3 = kEi;
     r.mass_per_length = 1.0;
     r.polar_inertia = 5e-5;
+    r.twist = twist;
     c = b.add_rod("beam", g, section, r, rod_frames_with_normal(g, Vec3::UnitY()));
     if (clamped) b.fix_twist("clamp.twist", {c, 0});
   } else {
@@ -127,9 +129,10 @@ struct RodCantilever {
   Model model;
   VecX y;
 };
-RodCantilever solved_rod(Index elements, const Vec3& moment_per_length) {
+RodCantilever solved_rod(Index elements, const Vec3& moment_per_length,
+                         RodTwist twist = RodTwist::quadratic) {
   ModelBuilder b;
-  const Index c = add_beam(b, true, elements, true);
+  const Index c = add_beam(b, true, elements, true, twist);
   b.add_distributed_moment("m", c, moment_per_length);
   RodCantilever out{b.finalize(), {}};
   out.y = solved(out.model);
@@ -138,23 +141,26 @@ RodCantilever solved_rod(Index elements, const Vec3& moment_per_length) {
 
 // A uniform torque m along a straight rod twists it as φ(s) = m(Ls − s²/2)/GJ, a quadratic that
 // the quadratic twist holds exactly, also at a large angle (φ(L) = 1 rad here: on a straight rod
-// the Kirchhoff torsion is linear and the dead moment stays on the axis).
+// the Kirchhoff torsion is linear and the dead moment stays on the axis). The linear twist with
+// consistent loads is nodally exact too (linear elements for φ″ = −m/GJ).
 TEST(DistributedLoad, RodUnderUniformTorqueTwistsAsTheClosedForm) {
   const double m = 1.0, gj = 2.0;
-  for (const Index n : {1, 3}) {
-    const RodCantilever r = solved_rod(n, Vec3(m, 0, 0));
-    const RodData& rod = *r.model.cables()[0].rod;
-    double worst = 0.0;
-    for (Index k = 0; k <= n; ++k) {
-      const double s = kLength * static_cast<double>(k) / static_cast<double>(n);
-      worst = std::max(worst,
-                       std::abs(r.y[rod.twist_first + k] - m * (kLength * s - 0.5 * s * s) / gj));
+  for (const RodTwist twist : {RodTwist::quadratic, RodTwist::linear})
+    for (const Index n : {1, 3}) {
+      const RodCantilever r = solved_rod(n, Vec3(m, 0, 0), twist);
+      const RodData& rod = *r.model.cables()[0].rod;
+      double worst = 0.0;
+      for (Index k = 0; k <= n; ++k) {
+        const double s = kLength * static_cast<double>(k) / static_cast<double>(n);
+        worst = std::max(worst,
+                         std::abs(r.y[rod.twist_first + k] - m * (kLength * s - 0.5 * s * s) / gj));
+      }
+      std::printf(
+          "  %s twist, %lld el.: tip twist %.15f rad (closed form %.15f), worst node %.2e\n",
+          twist == RodTwist::linear ? "linear" : "quadratic", static_cast<long long>(n),
+          r.y[rod.twist_first + n], m * kLength * kLength / (2 * gj), worst);
+      EXPECT_LE(worst, 1e-12);
     }
-    std::printf("  %lld el.: tip twist %.15f rad (closed form %.15f), worst node %.2e\n",
-                static_cast<long long>(n), r.y[rod.twist_first + n],
-                m * kLength * kLength / (2 * gj), worst);
-    EXPECT_LE(worst, 1e-12);
-  }
 }
 
 // A small uniform bending moment m about +y: M(s) = m(L − s), tip z = −mL³/(3EI); nodally exact
