@@ -19,6 +19,7 @@ JsonObject run_json(const Scene& scene, const RunRecord& record, const RunOutput
   JsonObject opts, counts, results, times;
   opts.set("integrator", ida ? "ida" : "genalpha").set("rtol", s.rtol).set("t_end", s.t_end);
   opts.set("contact_pattern", s.contact_pattern == ContactPatternPolicy::all ? "all" : "near");
+  opts.set("rod_frame_turn", s.rod_frame_turn);
   opts.set("cable_tangent",
            s.cable_tangent == CableTangent::tension_only ? "tension_only" : "exact");
   if (ida)
@@ -44,8 +45,8 @@ JsonObject run_json(const Scene& scene, const RunRecord& record, const RunOutput
         .set("max_energy_change", out->max_energy_change())
         .set("max_position_violation", out->max_position_violation())
         .set("max_velocity_violation", out->max_velocity_violation());
-  JsonObject meta = run_json_header(scene, record.scene_text, "run", record.status,
-                                    record.message, record.wall_seconds);
+  JsonObject meta = run_json_header(scene, record.scene_text, "run", record.status, record.message,
+                                    record.wall_seconds);
   meta.set("options", opts).set("counters", counts).set("time_s", times).set("results", results);
   return meta;
 }

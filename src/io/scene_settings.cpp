@@ -1,4 +1,6 @@
 // [integrator] and [output] (with its [[output.probe]] entries).
+#include <fmt/format.h>
+
 #include "scene_parts.hpp"
 
 namespace ancf::io {
@@ -18,6 +20,11 @@ IntegratorSettings read_integrator(TableReader& root) {
   s.cable_tangent = t.choice("cable_tangent", {"exact", "tension_only"}, "exact") == "tension_only"
                         ? CableTangent::tension_only
                         : CableTangent::exact;
+  s.rod_frame_turn = t.number_or("rod_frame_turn", s.rod_frame_turn, Range::non_negative);
+  if (s.rod_frame_turn > kRodMaxFrameTurn)
+    t.fail("rod_frame_turn", fmt::format("expected a turn in [0, {:g}] rad (the smallest rotation "
+                                         "is singular at π)",
+                                         kRodMaxFrameTurn));
   if (auto ida = t.optional_table("ida")) {
     s.ida_atol_position = ida->number_or("atol_position", s.ida_atol_position, Range::positive);
     s.ida_atol_velocity = ida->number_or("atol_velocity", s.ida_atol_velocity, Range::positive);

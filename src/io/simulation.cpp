@@ -32,7 +32,9 @@ class IdaBackend final : public Simulation::Backend {
   IdaBackend(const Model& model, const IntegratorSettings& s, const std::vector<double>& times)
       : problem_(model, scales(s), ContactPatternOptions{.policy = s.contact_pattern}),
         // The cable tangent is chosen before IDA computes consistent initial values with it.
-        ida_((problem_.set_cable_tangent(s.cable_tangent), problem_), options(s, times)),
+        ida_((problem_.set_cable_tangent(s.cable_tangent),
+              problem_.set_rod_frame_turn(s.rod_frame_turn), problem_),
+             options(s, times)),
         state_(SystemState::initial(model)) {
     state_.rod_history = &problem_.workspace().rods;
     problem_.unpack(0.0, ida_.y(), ida_.yp(), state_);  // consistent initial values
@@ -132,7 +134,9 @@ class GeneralizedAlphaBackend final : public Simulation::Backend {
  public:
   GeneralizedAlphaBackend(const Model& model, const IntegratorSettings& s)
       : problem_(model, ContactPatternOptions{.policy = s.contact_pattern}),
-        ga_((problem_.set_cable_tangent(s.cable_tangent), problem_), options(s)),
+        ga_((problem_.set_cable_tangent(s.cable_tangent),
+             problem_.set_rod_frame_turn(s.rod_frame_turn), problem_),
+            options(s)),
         state_(SystemState::initial(model)) {
     state_.rod_history = &problem_.workspace().rods;
     ga_.initialize(0.0);

@@ -14,6 +14,7 @@
 #include "ancf/solvers/generalized_alpha.hpp"
 #include "ancf/system/contact_pattern.hpp"
 #include "ancf/system/model.hpp"
+#include "ancf/system/rod_history.hpp"
 
 namespace ancf {
 
@@ -56,6 +57,9 @@ struct IntegratorSettings {
   ContactPatternPolicy contact_pattern = ContactPatternPolicy::near;
   /// Tangent of the cable elements in both integrators' iteration matrices (CableTangent).
   CableTangent cable_tangent = CableTangent::exact;
+  /// Turn [rad] of a rod node's tangent after which the time integrators update its frame
+  /// (0 … kRodMaxFrameTurn; rod_history.hpp, docs/rod.md "Frame updates").
+  double rod_frame_turn = kRodCommitTurn;
 };
 
 /// One probe of the output time series (probes.csv columns, docs/scenes.md).

@@ -72,6 +72,9 @@ struct Workspace {
   double element_seconds = 0.0, contact_seconds = 0.0;
   /// Tangent of the cable kernels in iteration matrices (CableTangent; residuals are exact).
   CableTangent cable_tangent = CableTangent::exact;
+  /// The turn [rad] of a rod node's tangent after which the time integrators' commit updates its
+  /// frame (commit_rod_history's min_turn; rod_history.hpp).
+  double rod_frame_turn = kRodCommitTurn;
   /// Force-only kernel of the cable elements in residuals (CableKernel; same force).
   CableKernel cable_force_kernel = CableKernel::invariant;
   /// Stiffness kernel of undamped cable elements in iteration matrices (same matrix).

@@ -65,7 +65,7 @@ class GglProblem final : public DaeProblem {
   /// Rods keep history: IDA returns after every step so that it is committed (rod_history.hpp).
   [[nodiscard]] bool keeps_history() const override { return model_.has_rods(); }
   void commit_step(double, std::span<const double> y) override {
-    commit_rod_history(model_, y, workspace_.rods, kRodCommitTurn);
+    commit_rod_history(model_, y, workspace_.rods, workspace_.rod_frame_turn);
   }
   void residual(double t, std::span<const double> y, std::span<const double> yp,
                 std::span<double> r) override;
@@ -98,6 +98,9 @@ class GglProblem final : public DaeProblem {
   /// Tangent of the cable elements in the iteration matrix (CableTangent; default exact). The
   /// residual does not depend on it.
   void set_cable_tangent(CableTangent tangent) { workspace_.cable_tangent = tangent; }
+  /// Turn [rad] ≥ 0 of a rod node's tangent after which a commit updates the node's frame
+  /// (default kRodCommitTurn; 0: every step). See rod_history.hpp and docs/rod.md, "Frame updates".
+  void set_rod_frame_turn(double turn) { workspace_.rod_frame_turn = turn; }
   /// First index of each part of y.
   [[nodiscard]] Index velocity_offset() const { return n_; }
   [[nodiscard]] Index lambda_offset() const { return 2 * n_; }

@@ -46,7 +46,7 @@ class MultibodyProblem final : public SecondOrderProblem {
   [[nodiscard]] std::string describe_row(Index i) const override { return model_.describe_row(i); }
   /// Commits the rod history at the accepted state (rod_history.hpp).
   void commit_step(double, std::span<const double> q, std::span<const double>) override {
-    commit_rod_history(model_, q, workspace_.rods, kRodCommitTurn);
+    commit_rod_history(model_, q, workspace_.rods, workspace_.rod_frame_turn);
   }
   /// Hash of the active contact samples of the last residual() (Workspace).
   [[nodiscard]] std::uint64_t active_set_signature() const override {
@@ -66,6 +66,9 @@ class MultibodyProblem final : public SecondOrderProblem {
   /// Tangent of the cable elements in the iteration matrix (CableTangent; default exact). The
   /// residual does not depend on it.
   void set_cable_tangent(CableTangent tangent) { workspace_.cable_tangent = tangent; }
+  /// Turn [rad] ≥ 0 of a rod node's tangent after which a commit updates the node's frame
+  /// (default kRodCommitTurn; 0: every step). See rod_history.hpp and docs/rod.md, "Frame updates".
+  void set_rod_frame_turn(double turn) { workspace_.rod_frame_turn = turn; }
   /// Force-only cable kernel of the residual (CableKernel; default invariant).
   void set_cable_force_kernel(CableKernel kernel) { workspace_.cable_force_kernel = kernel; }
   /// Stiffness kernel of undamped cables in the iteration matrix (CableKernel; default invariant).

@@ -49,8 +49,14 @@ struct RodHistory {
 void commit_rod_history(const Model& model, std::span<const double> q, RodHistory& history,
                         double min_turn = 0.0);
 
-/// The turn [rad] after which the problems (static, generalized-α, IDA) update a node's frame.
+/// The turn [rad] after which the problems (static, generalized-α, IDA) update a node's frame by
+/// default ([integrator] rod_frame_turn sets it for the time integrators). Each update changes
+/// how α parametrises the spin, so the constant twist inertia sees a slightly different equation
+/// at a time quantised to the step grid (docs/rod.md, "Frame updates").
 inline constexpr double kRodCommitTurn = 0.1;
+/// Largest [integrator] rod_frame_turn: keeps a step's further turn well away from the smallest
+/// rotation's singularity at π.
+inline constexpr double kRodMaxFrameTurn = 2.0;
 
 /// Material triad [t̂, d₂, d₃] of rod node k at q under `history`.
 [[nodiscard]] Mat3 rod_node_triad(const Model& model, Index cable, Index node,
