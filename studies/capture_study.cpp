@@ -333,6 +333,7 @@ int main(int argc, char** argv) {
       .set("fast", o.fast)
       .set("rho_infinity", s.rho_infinity)
       .set("cable_tangent", s.cable_tangent == CableTangent::tension_only ? "tension_only" : "exact")
+      .set("rod_frame_turn", s.rod_frame_turn)
       .set("genalpha_ceiling_rate", s.ga_controller.easy_rate)
       .set("genalpha_stepping", s.ga_error_controlled ? "error_controlled" : "fixed")
       .set("genalpha_error_rtol", s.ga_controller.rtol)

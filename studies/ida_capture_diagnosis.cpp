@@ -125,6 +125,7 @@ int main(int argc, char** argv) {
     scales.slope = SlopeScale::position_equivalent;
   GglProblem problem(scene.model, scales, ContactPatternOptions{.policy = s.contact_pattern});
   problem.set_cable_tangent(o.tension_only_tangent ? CableTangent::tension_only : s.cable_tangent);
+  problem.set_rod_frame_turn(s.rod_frame_turn);
   IdaOptions io;
   io.rtol = o.rtol > 0.0 ? o.rtol : s.rtol;
   io.max_order = o.max_order > 0 ? o.max_order : s.max_order;
