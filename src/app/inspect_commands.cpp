@@ -95,6 +95,10 @@ int info_command(const std::string& scene_path) {
                m.spring_dampers().size(), m.point_forces().size(), m.body_torques().size(),
                m.drives().size());
     if (!m.rod_moments().empty()) fmt::print("rod moments  {}\n", m.rod_moments().size());
+    for (const DistributedForceData& d : m.distributed_forces())
+      fmt::print("  distributed force on '{}', elements {}..{}: [{:.4g}, {:.4g}, {:.4g}] N/m\n",
+                 m.cables()[d.cable].name, d.first, d.first + d.count - 1, d.force_per_length.x(),
+                 d.force_per_length.y(), d.force_per_length.z());
     for (const RodDistributedMomentData& d : m.rod_distributed_moments())
       fmt::print(
           "  distributed moment on rod '{}', elements {}..{}: [{:.4g}, {:.4g}, {:.4g}] N m/m\n",

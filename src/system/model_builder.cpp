@@ -505,8 +505,9 @@ Model ModelBuilder::finalize() {
       add_line_load(m.constant_load_, c, c.section.mass_per_length * gravity_, 0,
                     static_cast<Index>(c.elements.size()));
   }
-  for (const DistributedForce& d : distributed_forces_)
+  for (const DistributedForceData& d : distributed_forces_)
     add_line_load(m.constant_load_, m.cables_[d.cable], d.force_per_length, d.first, d.count);
+  m.distributed_forces_ = distributed_forces_;
   for (std::size_t bi = 0; bi < bodies_.size(); ++bi) {
     const PendingBody& pb = bodies_[bi];
     const Index b = m.bodies_[bi].first_coordinate;

@@ -86,6 +86,13 @@ struct RodDistributedMomentData {
   Vec3 moment_per_length = Vec3::Zero();
 };
 
+/// A distributed dead force per unit reference length [N/m] on the elements [first, first + count)
+/// of cable `cable`. Its consistent nodal loads are in constant_load(); kept for reports.
+struct DistributedForceData {
+  Index cable = 0, first = 0, count = 0;
+  Vec3 force_per_length = Vec3::Zero();
+};
+
 /// A twist row of a rod node tied to a body, frame or space (rod_twist_constraint.hpp). The k-th
 /// is multiplier rows().size() + k (after all dot rows). It is evaluated under the committed
 /// reference triad of node `node` of cable `cable` (RodHistory).
@@ -158,6 +165,9 @@ class Model {
   [[nodiscard]] const std::vector<RodDistributedMomentData>& rod_distributed_moments() const {
     return rod_distributed_moments_;
   }
+  [[nodiscard]] const std::vector<DistributedForceData>& distributed_forces() const {
+    return distributed_forces_;
+  }
   /// True if some cable is a rod: the model keeps history (RodHistory, committed per step).
   [[nodiscard]] bool has_rods() const {
     for (const CableData& c : cables_)
@@ -228,6 +238,7 @@ class Model {
   std::vector<ForceElementData<RevoluteDrive>> drives_;
   std::vector<RodMomentData> rod_moments_;
   std::vector<RodDistributedMomentData> rod_distributed_moments_;
+  std::vector<DistributedForceData> distributed_forces_;
   std::vector<ContactShapeData> shapes_;
   std::vector<CableShapeContactData> cable_shape_contacts_;
   std::vector<CableCableContactData> cable_cable_contacts_;

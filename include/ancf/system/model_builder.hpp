@@ -235,11 +235,7 @@ class ModelBuilder {
   std::vector<RevoluteInfo> revolutes_;
   std::vector<PendingForce> forces_;
   std::vector<std::pair<NodeRef, Vec3>> node_forces_;
-  struct DistributedForce {
-    Index cable, first, count;
-    Vec3 force_per_length;
-  };
-  std::vector<DistributedForce> distributed_forces_;
+  std::vector<DistributedForceData> distributed_forces_;
   std::vector<RodDistributedMomentData> distributed_moments_;
   std::vector<std::pair<NodeRef, Vec3>> node_moments_;
   std::vector<ContactShapeData> shapes_;
