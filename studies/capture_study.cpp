@@ -73,7 +73,7 @@ struct Options {
   long newton_damping = -1;
   std::string contact_pattern;                               // "" (scene's), "near" or "all"
   std::vector<std::pair<std::string, std::string>> settings;  // --set KEY=VALUE under [integrator]
-  std::vector<std::string> scene_settings;                    // --scene-set KEY=VALUE from the root
+  std::vector<SceneOverride> scene_settings;                  // --scene-set KEY=VALUE from the root
 };
 
 Options parse(int argc, char** argv) {
@@ -120,7 +120,7 @@ Options parse(int argc, char** argv) {
       if (eq == std::string::npos || eq == 0) throw std::invalid_argument("--set needs KEY=VALUE, got " + kv);
       o.settings.emplace_back(kv.substr(0, eq), kv.substr(eq + 1));
     }
-    else if (a == "--scene-set") o.scene_settings.push_back(value());
+    else if (a == "--scene-set") o.scene_settings.push_back(parse_scene_override(value()));
     else throw std::invalid_argument("unknown option " + a);
   }
   if (o.integrator != "genalpha" && o.integrator != "ida")
@@ -244,7 +244,7 @@ int main(int argc, char** argv) {
     // --set KEY=VALUE below [integrator]: the io layer's scene overrides (scene_overrides.hpp).
     std::vector<SceneOverride> settings;
     for (const auto& [key, text] : o.settings) settings.push_back({"integrator." + key, text});
-    for (const std::string& kv : o.scene_settings) settings.push_back(parse_scene_override(kv));
+    settings.insert(settings.end(), o.scene_settings.begin(), o.scene_settings.end());
     scene = load_scene_from_string(apply_overrides(o), o.scene, settings);
   } catch (const std::exception& e) {
     fmt::print(stderr, "ancf-capture: {}\n", e.what());
@@ -346,10 +346,7 @@ int main(int argc, char** argv) {
       .set("rope_bending_damping", scene.model.cables()[0].section.bending_damping)
       .set("rope_mass_damping", scene.model.cables()[0].section.mass_damping);
   JsonObject scene_set;  // --scene-set entries in order, key → TOML value text
-  for (const std::string& kv : o.scene_settings) {
-    const SceneOverride v = parse_scene_override(kv);
-    scene_set.set(v.key, v.value);
-  }
+  for (const SceneOverride& v : o.scene_settings) scene_set.set(v.key, v.value);
   opts.set("scene_set", scene_set);
   for (const auto& [name, value] : counters) counts.set(name, value);
   meta.set("scene", o.scene)

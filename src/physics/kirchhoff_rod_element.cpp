@@ -127,11 +127,13 @@ double rod_torsion_strain(const RodSection& section, const RodElementReference& 
                           const RodElementHistory& history, const Vec15& e, double xi) {
   if (section.torsion_strain == RodTorsionStrain::projected) {
     // The values the energy squares at the Gauss points lie on this line
-    // (kirchhoff_rod_torsion.cpp).
+    // (kirchhoff_rod_torsion.cpp); K₁ there as the kernels take it, one element frame for all.
     const auto row = rod_detail::linear_projection_row(ref.xi, ref.weight, xi);
+    const auto x = to_array<double>(e);
+    const ElementFrame<double> f = element_frame(history, x);
     double s = 0.0;
     for (int q = 0; q < kRodGaussPoints; ++q)
-      s += row[q] * (rod_point_state(ref, history, e, ref.xi[q]).curvature[0] - ref.k0[q][0]);
+      s += row[q] * (point_strains(point_data(ref, q), f, x)[1] - ref.k0[q][0]);
     return s;
   }
   Vec15 e0 = Vec15::Zero();
