@@ -334,6 +334,8 @@ int main(int argc, char** argv) {
       .set("rho_infinity", s.rho_infinity)
       .set("cable_tangent", s.cable_tangent == CableTangent::tension_only ? "tension_only" : "exact")
       .set("rod_frame_turn", s.rod_frame_turn)
+      .set("ida_slope_scale", s.ida_slope_position_scale ? "position_equivalent" : "unit")
+      .set("ida_twist_scale", s.ida_twist_position_scale ? "position_equivalent" : "unit")
       .set("genalpha_ceiling_rate", s.ga_controller.easy_rate)
       .set("genalpha_stepping", s.ga_error_controlled ? "error_controlled" : "fixed")
       .set("genalpha_error_rtol", s.ga_controller.rtol)

@@ -1,7 +1,8 @@
 // Why IDA takes so many steps on the capture scene (issue: "IDA through contact"): integrate the
 // scene with IDA in short windows and record, at the end of each, the step size, the order and the
 // differential unknown with the largest weighted local error estimate (the one that limits the
-// step), classified by kind: rope node position r / slope r' (q or v), pole, ring. Prints steps per
+// step), classified by kind: rope node position r / slope r' / rod twist (q or v), pole, ring. The
+// scene's [integrator.ida] slope_scale and twist_scale apply. Prints steps per
 // second of model time and the share of windows each kind limited; writes windows.csv.
 //
 // Usage: ancf-study-ida-capture [--scene studies/scenes/capture.toml] [--t-end T] [--window W]
@@ -78,7 +79,8 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-// "rope r'", "rope r' rate", "pole", …: the kind of differential unknown i of the GGL problem.
+// "rope r'", "rope r' rate", "rope twist", "pole", …: the kind of differential unknown i of the GGL
+// problem.
 std::string kind_of(const Model& model, Index i) {
   const Index n = model.coordinate_count();
   const bool velocity = i >= n;
@@ -87,6 +89,9 @@ std::string kind_of(const Model& model, Index i) {
     const Index local = c - cable.first_coordinate;
     if (local >= 0 && local < 6 * cable.node_count)
       return std::string(local % 6 < 3 ? "rope r" : "rope r'") + (velocity ? " rate" : "");
+    if (cable.rod && c >= cable.rod->twist_first &&
+        c < cable.rod->twist_first + cable.rod->twist_block_size(cable.node_count))
+      return std::string("rope twist") + (velocity ? " rate" : "");
   }
   for (const BodyData& b : model.bodies())
     if (c >= b.first_coordinate && c < b.first_coordinate + 12)
@@ -103,8 +108,11 @@ int main(int argc, char** argv) {
     o = parse(argc, argv);
     toml::table root = toml::parse_file(o.scene);
     if (o.axial_damping >= 0.0)
-      for (toml::node& c : *root["cable"].as_array())
-        c.as_table()->at("section").as_table()->insert_or_assign("axial_damping", o.axial_damping);
+      for (const char* kind : {"cable", "rod"})  // the ropes are cables or Kirchhoff rods
+        if (toml::array* ropes = root[kind].as_array())
+          for (toml::node& c : *ropes)
+            c.as_table()->at("section").as_table()->insert_or_assign("axial_damping",
+                                                                     o.axial_damping);
     for (toml::node& c : *root["contact"].as_array()) {
       toml::table& law = *c.as_table()->at("law").as_table();
       if (o.friction >= 0.0) law.insert_or_assign("friction", o.friction);
@@ -123,6 +131,7 @@ int main(int argc, char** argv) {
   GglScales scales;
   if (s.ida_slope_position_scale || o.slope_position_scale)
     scales.slope = SlopeScale::position_equivalent;
+  if (s.ida_twist_position_scale) scales.twist = TwistScale::position_equivalent;
   GglProblem problem(scene.model, scales, ContactPatternOptions{.policy = s.contact_pattern});
   problem.set_cable_tangent(o.tension_only_tangent ? CableTangent::tension_only : s.cable_tangent);
   problem.set_rod_frame_turn(s.rod_frame_turn);

@@ -3,6 +3,7 @@
 // consistent initial values it computes.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <new>
@@ -241,6 +242,47 @@ TEST(GglProblem, LayoutClassesAndNames) {
   // Position and slope scales differ by the length scale.
   EXPECT_EQ(ggl.variable_scale(0), ggl.scales().length);
   EXPECT_EQ(ggl.variable_scale(3), 1.0);
+}
+
+// TwistScale::position_equivalent: a rod's twist angles (node angles and interior twists) get the
+// scale L/r_g, r_g = √(ρJ_p/ρA), their rates that over T; everything else keeps its scale.
+TEST(GglProblem, PositionEquivalentTwistScaleIsLengthOverRadiusOfGyration) {
+  ModelBuilder b;
+  const CableGeometry g = straight_cable(Vec3::Zero(), Vec3(0.0, 0.0, 1.2), 4);
+  RodSection section;
+  section.axial_stiffness = 1e3;
+  section.torsional_stiffness = 0.3;
+  section.bending_stiffness_2 = section.bending_stiffness_3 = 0.5;
+  section.mass_per_length = 0.2;
+  section.polar_inertia = 0.2 * 0.004 * 0.004 / 2.0;  // ρA r²/2, r = 4 mm: r_g = 2.83 mm
+  const Index rod =
+      b.add_rod("rod", g, CableSection{}, section, rod_frames_with_normal(g, Vec3::UnitY()));
+  b.pin("clamp.r", {rod, 0}, Vec3::Zero());
+  b.align_slope("clamp.t", {rod, 0}, Vec3::UnitZ());
+  b.fix_twist("clamp.twist", {rod, 0});
+  const Model model = b.finalize();
+  const RodData& data = *model.cables()[0].rod;
+  const Index twists = data.twist_block_size(model.cables()[0].node_count);
+  ASSERT_EQ(twists, 2 * 5 - 1);  // quadratic twist: 5 node angles, 4 interior twists
+  const GglProblem unit(model);
+  const GglProblem scaled(model, GglScales{.twist = TwistScale::position_equivalent});
+  const Index n = model.coordinate_count();
+  const double r_g = std::sqrt(section.polar_inertia / section.mass_per_length);
+  ASSERT_EQ(unit.scales().length, scaled.scales().length);
+  ASSERT_EQ(unit.scales().time, scaled.scales().time);
+  const double big_l = scaled.scales().length, time = scaled.scales().time;
+  for (Index i = 0; i < n; ++i) {
+    const bool twist = i >= data.twist_first && i < data.twist_first + twists;
+    if (twist) {
+      EXPECT_EQ(unit.variable_scale(i), 1.0) << unit.describe_row(i);
+      EXPECT_NEAR(scaled.variable_scale(i), big_l / r_g, 1e-12 * big_l / r_g)
+          << scaled.describe_row(i);
+      EXPECT_NEAR(scaled.variable_scale(n + i), big_l / r_g / time, 1e-12 * big_l / r_g / time);
+    } else {
+      EXPECT_EQ(scaled.variable_scale(i), unit.variable_scale(i)) << scaled.describe_row(i);
+      EXPECT_EQ(scaled.variable_scale(n + i), unit.variable_scale(n + i));
+    }
+  }
 }
 
 }  // namespace

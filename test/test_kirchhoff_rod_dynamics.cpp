@@ -8,6 +8,7 @@
 // (second order: e_{h/2} ≈ |q_h − q_{h/2}|/3).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -116,12 +117,17 @@ Estimate richardson(const Vec3& a, const Vec3& b, const Vec3& c) {
 // d₂ at kT: within 3× generalized-α's own error estimated with its observed order (second order
 // in positions; the tip triad under a suddenly applied moment converges more slowly, measured
 // ≈ 1.2 for the distributed moment's d₂, so a second-order estimate would understate it).
-// Returns the estimate for d₂ and IDA's frame updates (RodHistory::frame_updates).
-std::pair<Estimate, long> expect_integrators_agree(const Model& m, const char* name,
-                                                   double frame_turn = kRodCommitTurn) {
+// `scales` sets IDA's absolute tolerances (GglScales: slope and twist scales). Returns the
+// estimate for d₂, IDA's frame updates (RodHistory::frame_updates) and its steps.
+struct Agreement {
+  Estimate d2;
+  long frame_updates, ida_steps;
+};
+Agreement expect_integrators_agree(const Model& m, const char* name,
+                                   double frame_turn = kRodCommitTurn, GglScales scales = {}) {
   const Tip a = genalpha_tip(m, 5e-4, frame_turn), b = genalpha_tip(m, 2.5e-4, frame_turn),
             c = genalpha_tip(m, 1.25e-4, frame_turn);
-  GglProblem ggl(m);
+  GglProblem ggl(m, scales);
   ggl.set_rod_frame_turn(frame_turn);
   IdaOptions o;
   o.rtol = 1e-8;
@@ -148,10 +154,12 @@ std::pair<Estimate, long> expect_integrators_agree(const Model& m, const char* n
   EXPECT_GT(est_d2.order, 0.5) << name;
   // IDA at rtol 1e-8 is far more accurate than generalized-α at h = 1.25e-4 (measured: rtol 1e-10
   // moves d₂ by ≤ 2e-8): the difference is generalized-α's error, up to the factor the estimate
-  // may be off by; 1e-8 is IDA's own share (rtol 1e-8 on coordinates of O(1) m).
+  // may be off by; 1e-8 is IDA's own share (rtol 1e-8 on coordinates of O(1) m). d₂ turns with
+  // the twist: with TwistScale::position_equivalent IDA's share there is rtol × the twist scale.
+  const double twist_share = o.rtol * ggl.variable_scale(m.cables()[0].rod->twist_first);
   EXPECT_LT(diff_r, 3.0 * est_r.error + 1e-8) << name;
-  EXPECT_LT(diff_d2, 3.0 * est_d2.error + 1e-8) << name;
-  return {est_d2, ggl.workspace().rods.frame_updates};
+  EXPECT_LT(diff_d2, 3.0 * est_d2.error + std::max(1e-8, twist_share)) << name;
+  return {est_d2, ggl.workspace().rods.frame_updates, ida.statistics().steps};
 }
 
 TEST(KirchhoffRodDynamics, IdaAndGeneralizedAlphaAgree) {
@@ -173,13 +181,30 @@ TEST(KirchhoffRodDynamics, HelixUnderDistributedMomentIdaAndGeneralizedAlphaAgre
 // order in generalized-α (with updates after 0.1 rad: order 1.15, the test above).
 TEST(KirchhoffRodDynamics, WithoutFrameUpdatesTheTriadConvergesAtSecondOrder) {
   const Model m = released_helix(Vec3(0.3, 0.0, 0.2));
-  const auto [updating, updates] = expect_integrators_agree(m, "frames updated after 0.1 rad");
-  const auto [fixed, none] = expect_integrators_agree(m, "frames updated after 2 rad", 2.0);
-  std::printf("frame updates in IDA: %ld (0.1 rad), %ld (2 rad); d2 order %.2f / %.2f\n", updates,
-              none, updating.order, fixed.order);
-  EXPECT_GT(updates, 0);
-  EXPECT_EQ(none, 0);
-  EXPECT_GT(fixed.order, 1.7);  // second order, against 1.15 with the updates
+  const Agreement updating = expect_integrators_agree(m, "frames updated after 0.1 rad");
+  const Agreement fixed = expect_integrators_agree(m, "frames updated after 2 rad", 2.0);
+  std::printf("frame updates in IDA: %ld (0.1 rad), %ld (2 rad); d2 order %.2f / %.2f\n",
+              updating.frame_updates, fixed.frame_updates, updating.d2.order, fixed.d2.order);
+  EXPECT_GT(updating.frame_updates, 0);
+  EXPECT_EQ(fixed.frame_updates, 0);
+  EXPECT_GT(fixed.d2.order, 1.7);  // second order, against 1.15 with the updates
+}
+
+// IDA's position-equivalent slope and twist tolerances ([integrator.ida] slope_scale and
+// twist_scale, GglScales): a twist error counts as the motion r_g δα it gives the section's
+// points. The integrators still agree as above (the tip position to generalized-α's error, d₂ to
+// that plus rtol × L/r_g), and IDA takes no more steps than with unit scales.
+TEST(KirchhoffRodDynamics, PositionEquivalentTolerancesKeepTheAgreement) {
+  const GglScales scaled{.slope = SlopeScale::position_equivalent,
+                         .twist = TwistScale::position_equivalent};
+  for (const auto& [model, name] : {std::pair{whirled_rod(), "whirled straight rod"},
+                                    std::pair{released_helix(), "released helix"}}) {
+    const Agreement unit = expect_integrators_agree(model, name);
+    const Agreement position = expect_integrators_agree(model, name, kRodCommitTurn, scaled);
+    std::printf("%s: IDA steps %ld (unit scales), %ld (position-equivalent)\n", name,
+                unit.ida_steps, position.ida_steps);
+    EXPECT_LE(position.ida_steps, unit.ida_steps) << name;
+  }
 }
 
 }  // namespace

@@ -37,7 +37,8 @@ py::dict integrator_dict(const IntegratorSettings& s) {
       py::arg("atol_velocity") = s.ida_atol_velocity,
       py::arg("atol_multiplier") = s.ida_atol_multiplier,
       py::arg("linear_solver") = s.ida_sundials_klu ? "sundials_klu" : "ancf_klu",
-      py::arg("slope_scale") = s.ida_slope_position_scale ? "position_equivalent" : "unit");
+      py::arg("slope_scale") = s.ida_slope_position_scale ? "position_equivalent" : "unit",
+      py::arg("twist_scale") = s.ida_twist_position_scale ? "position_equivalent" : "unit");
   d["genalpha"] = py::dict(
       py::arg("step") = s.step, py::arg("rho_infinity") = s.rho_infinity,
       py::arg("formulation") = s.stabilized_index2 ? "stabilized_index2" : "index3",

@@ -23,7 +23,10 @@ JsonObject run_json(const Scene& scene, const RunRecord& record, const RunOutput
   opts.set("cable_tangent",
            s.cable_tangent == CableTangent::tension_only ? "tension_only" : "exact");
   if (ida)
-    opts.set("max_step", s.max_step).set("max_order", static_cast<long>(s.max_order));
+    opts.set("max_step", s.max_step)
+        .set("max_order", static_cast<long>(s.max_order))
+        .set("slope_scale", s.ida_slope_position_scale ? "position_equivalent" : "unit")
+        .set("twist_scale", s.ida_twist_position_scale ? "position_equivalent" : "unit");
   else
     opts.set("step", s.step)
         .set("rho_infinity", s.rho_infinity)

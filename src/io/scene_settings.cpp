@@ -37,6 +37,8 @@ IntegratorSettings read_integrator(TableReader& root) {
         ida->choice("vector_ops", {"compiled", "sundials"}, "compiled") == "sundials";
     s.ida_slope_position_scale = ida->choice("slope_scale", {"unit", "position_equivalent"},
                                              "unit") == "position_equivalent";
+    s.ida_twist_position_scale = ida->choice("twist_scale", {"unit", "position_equivalent"},
+                                             "unit") == "position_equivalent";
     s.ida_sundials_klu =
         ida->choice("linear_solver", {"ancf_klu", "sundials_klu"}, "ancf_klu") == "sundials_klu";
     ida->finish();

@@ -107,6 +107,7 @@ class IdaBackend final : public Simulation::Backend {
   static GglScales scales(const IntegratorSettings& s) {
     GglScales scales;
     if (s.ida_slope_position_scale) scales.slope = SlopeScale::position_equivalent;
+    if (s.ida_twist_position_scale) scales.twist = TwistScale::position_equivalent;
     return scales;
   }
   static IdaOptions options(const IntegratorSettings& s, const std::vector<double>& times) {

@@ -13,12 +13,15 @@ namespace {
 
 using BlockVec = std::array<Vec3, AffineVector::kMaxTerms>;
 
-// True if coordinate i is a position (metres): a cable node's r or a body's r_O. Slopes and body
-// axes are dimensionless.
+// True if coordinate i is a position (metres): a cable node's r or a body's r_O. Slopes, body
+// axes and rod twist angles are dimensionless.
 bool is_length(const Model& model, Index i) {
   for (const CableData& c : model.cables()) {
     const Index local = i - c.first_coordinate;
     if (local >= 0 && local < 6 * c.node_count) return local % 6 < 3;
+    if (c.rod && i >= c.rod->twist_first &&
+        i < c.rod->twist_first + c.rod->twist_block_size(c.node_count))
+      return false;  // a twist angle [rad]
   }
   for (const BodyData& b : model.bodies()) {
     const Index local = i - b.first_coordinate;
@@ -149,6 +152,19 @@ void GglProblem::compute_scales(GglScales given) {
         for (int d = 3; d < 6; ++d)
           scale_[c.first_coordinate + 6 * k + d] = big_l / (4.0 * l / 27.0);
       }
+  }
+  if (given.twist == TwistScale::position_equivalent) {
+    // A twist error δα turns the section about the centreline: its points move by r_g δα in the
+    // RMS over the section (r_g² = J_p/A = ρJ_p/ρA), so the twist whose error moves them by L
+    // has the scale L/r_g. Node angles and interior twists alike.
+    for (const CableData& c : model_.cables()) {
+      if (!c.rod) continue;
+      const RodSection& s = c.rod->section;
+      const double r_g = std::sqrt(s.polar_inertia / s.mass_per_length);
+      if (!(r_g > 0.0 && std::isfinite(r_g))) continue;
+      const Index count = c.rod->twist_block_size(c.node_count);
+      for (Index k = 0; k < count; ++k) scale_[c.rod->twist_first + k] = big_l / r_g;
+    }
   }
 
   // Energy: work of the constant loads over one scale of motion, initial kinetic and strain energy.

@@ -34,6 +34,7 @@ struct IntegratorSettings {
   bool ida_sundials_vector_ops = false;   ///< IDA: SUNDIALS' own vector operations (IdaOptions)
   bool ida_sundials_klu = false;          ///< IDA: SUNDIALS' SUNLinSol_KLU instead of the project's
   bool ida_slope_position_scale = false;  ///< IDA: SlopeScale::position_equivalent tolerances
+  bool ida_twist_position_scale = false;  ///< IDA: TwistScale::position_equivalent tolerances
   double step = 1e-3;                     ///< generalized-α step size h [s] > 0
   double rho_infinity = 0.8;              ///< generalized-α spectral radius at infinity, [0, 1]
   bool stabilized_index2 = false;  ///< generalized-α formulation (false: index 3, needs ρ∞ < 1)

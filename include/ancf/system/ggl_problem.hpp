@@ -29,7 +29,8 @@ namespace ancf {
 /// Physical scales that set the absolute tolerances (DaeProblem::variable_scale). Zero entries
 /// are derived from the model: length L from the extent of the initial configuration, energy E
 /// from the constant loads over L, the initial kinetic and strain energy, velocity √(2E/m_total),
-/// time T = L/velocity. Coordinates get L (positions) or 1 (slopes, body axes; see SlopeScale),
+/// time T = L/velocity. Coordinates get L (positions) or 1 (slopes, body axes, rod twist angles;
+/// see SlopeScale and TwistScale),
 /// velocities those over T, a multiplier λ_i the force E/g_i and μ_i the rate s_i²/(T g_i), with
 /// g_i = ‖Φ_q,i S‖ the gradient of row i in scaled coordinates and s_i the largest coordinate scale
 /// in the row. Scale of a cable's nodal slope r' (and of its rate, over T).
@@ -42,11 +43,23 @@ enum class SlopeScale {
   position_equivalent,
 };
 
+/// Scale of a rod's twist angles α, β (and of their rates, over T).
+enum class TwistScale {
+  unit,  ///< 1 rad: a twist error of rtol rad is allowed, whatever the section
+  /// L/r_g, r_g = √(ρJ_p/ρA) the section's polar radius of gyration: the twist error that moves
+  /// the section's material points (RMS over the section, r_g δα) as much as a position error of
+  /// the scale L. On thin ropes (r_g ≪ L) the twist modes are light and fast; with unit scales
+  /// their contact-excited rates set every IDA step of the rod capture (ancf-study-ida-capture).
+  /// A section without mass or polar inertia keeps 1.
+  position_equivalent,
+};
+
 struct GglScales {
   double length = 0.0;  ///< L [m]
   double energy = 0.0;  ///< E [J]
   double time = 0.0;    ///< T [s]
   SlopeScale slope = SlopeScale::unit;
+  TwistScale twist = TwistScale::unit;
 };
 
 /// Ownership: keeps a reference to `model`, which must outlive the problem.
