@@ -6,8 +6,12 @@
 // far from that, for any rotation of the rod over the run (Meier, Popp & Wall 2014, §4; 4C's
 // qrefconv_). It changes only in commit_rod_history(), called on accepted states (a converged
 // load step, an accepted time step): a rejected step or Newton iterate never touches it, so there
-// is nothing to roll back. At the committed state the commit leaves every triad, strain and force
-// unchanged; it changes only how nearby states are parametrised.
+// is nothing to roll back. At the committed state the commit leaves every triad and strain
+// unchanged, and the forces on the positions and twists; it changes how nearby states are
+// parametrised, and with it the slope forces by −f_α c (f_α the node's twist force, c the twist
+// the old smallest rotation gave a slope change; test
+// FrameUpdateChangesTheSlopeForcesByTheTwistForce): nothing in a twist equilibrium, the twist
+// inertia force ρJ α̈ times c in dynamics.
 #pragma once
 
 #include <span>
@@ -40,11 +44,11 @@ struct RodHistory {
 /// R_i ← SR(R_i → t_i(q)) for the nodes whose unit tangent has turned by more than `min_turn`
 /// [rad] from R_i's. No heap allocation.
 ///
-/// Why a threshold: the elastic forces are functions of the physical state (centreline and
-/// material triads) and do not see a commit, but the constant twist inertia ρJ α̇² (see
+/// Why a threshold: the strain energy is a function of the physical state (centreline and
+/// material triads) and does not see a commit, but the constant twist inertia ρJ α̇² (see
 /// rod_twist_mass) measures the spin relative to R_i, so every frame update changes the
-/// equations of motion slightly. Updating only after a finite turn keeps them smooth between
-/// rare updates (and the same for any step sequence), still far (min_turn ≪ π) from the
+/// equations of motion slightly (the slope rows by ρJ α̈ c, see above). Updating only after a
+/// finite turn keeps them smooth between rare updates, still far (min_turn ≪ π) from the
 /// smallest-rotation singularity.
 void commit_rod_history(const Model& model, std::span<const double> q, RodHistory& history,
                         double min_turn = 0.0);
