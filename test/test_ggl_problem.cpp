@@ -182,17 +182,23 @@ TEST(GglProblem, ResidualAndJacobianDoNotAllocate) {
   EXPECT_EQ(g_allocations, before);
 }
 
-// The same with Kirchhoff rods clamped into a body and a rotating frame including twist (the
-// twist rows of rod_twist_constraint.hpp, evaluated with fixed-size kernels).
-TEST(GglProblem, ResidualAndJacobianWithRodTwistRowsDoNotAllocate) {
-  ModelBuilder b;
-  const CableGeometry g = straight_cable(Vec3::Zero(), Vec3(0.1, 0.0, 1.0), 3);
+// A rod section of ρA = 0.2 kg/m with the given polar inertia ρJ_p [kg m].
+RodSection rod_section(double polar_inertia) {
   RodSection section;
   section.axial_stiffness = 1e3;
   section.torsional_stiffness = 0.3;
   section.bending_stiffness_2 = section.bending_stiffness_3 = 0.5;
   section.mass_per_length = 0.2;
-  section.polar_inertia = 1e-3;
+  section.polar_inertia = polar_inertia;
+  return section;
+}
+
+// The same with Kirchhoff rods clamped into a body and a rotating frame including twist (the
+// twist rows of rod_twist_constraint.hpp, evaluated with fixed-size kernels).
+TEST(GglProblem, ResidualAndJacobianWithRodTwistRowsDoNotAllocate) {
+  ModelBuilder b;
+  const CableGeometry g = straight_cable(Vec3::Zero(), Vec3(0.1, 0.0, 1.0), 3);
+  const RodSection section = rod_section(1e-3);
   const Index r1 =
       b.add_rod("r1", g, CableSection{}, section, rod_frames_with_normal(g, Vec3::UnitY()));
   const Index r2 =
@@ -249,12 +255,7 @@ TEST(GglProblem, LayoutClassesAndNames) {
 TEST(GglProblem, PositionEquivalentTwistScaleIsLengthOverRadiusOfGyration) {
   ModelBuilder b;
   const CableGeometry g = straight_cable(Vec3::Zero(), Vec3(0.0, 0.0, 1.2), 4);
-  RodSection section;
-  section.axial_stiffness = 1e3;
-  section.torsional_stiffness = 0.3;
-  section.bending_stiffness_2 = section.bending_stiffness_3 = 0.5;
-  section.mass_per_length = 0.2;
-  section.polar_inertia = 0.2 * 0.004 * 0.004 / 2.0;  // ρA r²/2, r = 4 mm: r_g = 2.83 mm
+  const RodSection section = rod_section(0.2 * 0.004 * 0.004 / 2.0);  // ρA r²/2, r = 4 mm
   const Index rod =
       b.add_rod("rod", g, CableSection{}, section, rod_frames_with_normal(g, Vec3::UnitY()));
   b.pin("clamp.r", {rod, 0}, Vec3::Zero());
