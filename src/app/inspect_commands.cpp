@@ -91,10 +91,15 @@ int info_command(const std::string& scene_path) {
       fmt::print(
           "  {:<30} {} rows{}\n", c.name, c.row_count,
           c.first_row >= twist_rows_start ? " (rod twist tied to a body/frame: d2.b = 0)" : "");
-    fmt::print("forces       {} spring-dampers, {} point forces, {} torques, {} drives\n",
-               m.spring_dampers().size(), m.point_forces().size(), m.body_torques().size(),
-               m.drives().size());
+    fmt::print(
+        "forces       {} spring-dampers, {} point forces, {} dead nodal forces, {} torques, {} "
+        "drives\n",
+        m.spring_dampers().size(), m.point_forces().size(), m.node_forces().size(),
+        m.body_torques().size(), m.drives().size());
     if (!m.rod_moments().empty()) fmt::print("rod moments  {}\n", m.rod_moments().size());
+    for (const NodeForceData& f : m.node_forces())
+      fmt::print("  force on '{}' node {}: [{:.4g}, {:.4g}, {:.4g}] N\n", m.cables()[f.cable].name,
+                 f.node, f.force.x(), f.force.y(), f.force.z());
     for (const DistributedForceData& d : m.distributed_forces())
       fmt::print("  distributed force on '{}', elements {}..{}: [{:.4g}, {:.4g}, {:.4g}] N/m\n",
                  m.cables()[d.cable].name, d.first, d.first + d.count - 1, d.force_per_length.x(),

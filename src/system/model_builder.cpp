@@ -518,7 +518,10 @@ Model ModelBuilder::finalize() {
     for (int k = 0; k < 4; ++k)
       m.constant_load_.segment<3>(b + 3 * k) += pb.inertia.mass * c[k] * gravity_;
   }
-  for (const auto& [node, force] : node_forces_) m.constant_load_.segment<3>(o.node(node)) += force;
+  for (const auto& [node, force] : node_forces_) {
+    m.constant_load_.segment<3>(o.node(node)) += force;
+    m.node_forces_.push_back({node.cable, node.node, force});
+  }
 
   // Constraint rows: each body's orthonormality first, then the user's constraints in order, so
   // that a redundant user constraint is the one reported.

@@ -93,6 +93,13 @@ struct DistributedForceData {
   Vec3 force_per_length = Vec3::Zero();
 };
 
+/// A dead force [N] on node `node` of cable `cable`. Its load is in constant_load(); kept for
+/// reports.
+struct NodeForceData {
+  Index cable = 0, node = 0;
+  Vec3 force = Vec3::Zero();
+};
+
 /// A twist row of a rod node tied to a body, frame or space (rod_twist_constraint.hpp). The k-th
 /// is multiplier rows().size() + k (after all dot rows). It is evaluated under the committed
 /// reference triad of node `node` of cable `cable` (RodHistory).
@@ -165,6 +172,7 @@ class Model {
   [[nodiscard]] const std::vector<RodDistributedMomentData>& rod_distributed_moments() const {
     return rod_distributed_moments_;
   }
+  [[nodiscard]] const std::vector<NodeForceData>& node_forces() const { return node_forces_; }
   [[nodiscard]] const std::vector<DistributedForceData>& distributed_forces() const {
     return distributed_forces_;
   }
@@ -238,6 +246,7 @@ class Model {
   std::vector<ForceElementData<RevoluteDrive>> drives_;
   std::vector<RodMomentData> rod_moments_;
   std::vector<RodDistributedMomentData> rod_distributed_moments_;
+  std::vector<NodeForceData> node_forces_;
   std::vector<DistributedForceData> distributed_forces_;
   std::vector<ContactShapeData> shapes_;
   std::vector<CableShapeContactData> cable_shape_contacts_;
