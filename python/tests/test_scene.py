@@ -167,6 +167,19 @@ def test_builder_errors_point_into_its_text():
         b2.build()
 
 
+def test_ida_tolerance_scales():
+    unit = ancf.load(PENDULUM)
+    assert unit.integrator["ida"]["slope_scale"] == "unit"
+    assert unit.integrator["ida"]["twist_scale"] == "unit"
+    rod = ancf.load(SCENES / "capture_rod.toml")  # sets both (docs/capture.md)
+    assert rod.integrator["ida"]["slope_scale"] == "position_equivalent"
+    assert rod.integrator["ida"]["twist_scale"] == "position_equivalent"
+    s = ancf.load(PENDULUM, {"integrator.ida.twist_scale": "position_equivalent"})
+    assert s.integrator["ida"]["twist_scale"] == "position_equivalent"
+    with pytest.raises(ancf.SceneError, match="twist_scale"):
+        ancf.load(PENDULUM, {"integrator.ida.twist_scale": "radius"})
+
+
 def test_every_study_scene_loads():
     for path in sorted(SCENES.glob("*.toml")):
         assert ancf.load(path).info()["coordinates"] > 0
