@@ -11,7 +11,7 @@ mesh with --samples per element; docs/capture.md "The contact samples are a seco
 discretisation"), then compares them against the finest:
 
   studies/capture_mesh_agreement.py --run OUT [--scene S] [--meshes 12,24,48,96] [--samples 4]
-                                    [--scene-set KEY=VALUE ...]
+                                    [--integrator genalpha|ida] [--scene-set KEY=VALUE ...]
 
 (--scene-set is passed to every ancf-capture run: a scene key by its path from the file's root,
 e.g. --scene-set 'rod[0].grading.band_ratio=0.3'.)
@@ -37,7 +37,7 @@ def load(directory):
     return rows, run
 
 
-def run_meshes(out, scene, meshes, samples, scene_set=()):
+def run_meshes(out, scene, meshes, samples, scene_set=(), integrator=None):
     """One ancf-capture run per mesh into OUT/e<N>; returns the directories, finest last."""
     meshes = sorted(meshes)
     finest = meshes[-1]
@@ -50,6 +50,8 @@ def run_meshes(out, scene, meshes, samples, scene_set=()):
                "--contact-samples", str(samples * finest // n), "--out", d]
         for kv in scene_set:
             cmd += ["--scene-set", kv]
+        if integrator:
+            cmd += ["--integrator", integrator]
         print("$ " + " ".join(cmd), flush=True)
         done = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
         if done.returncode != 0:
@@ -116,6 +118,8 @@ def main():
     parser.add_argument("--meshes", default="12,24,48,96", help="elements per rope, comma-separated")
     parser.add_argument("--samples", type=int, default=4,
                         help="rope-shape contact samples per element of the finest mesh")
+    parser.add_argument("--integrator", choices=["genalpha", "ida"],
+                        help="integrator of the runs (default: the scene's)")
     parser.add_argument("--scene-set", action="append", default=[], metavar="KEY=VALUE",
                         help="scene key for every run (ancf-capture --scene-set), repeatable")
     a = parser.parse_args()
@@ -123,7 +127,7 @@ def main():
         if a.dirs:
             parser.error("give either --run or directories")
         a.dirs = run_meshes(a.run, a.scene, [int(m) for m in a.meshes.split(",")], a.samples,
-                            a.scene_set)
+                            a.scene_set, a.integrator)
     if not a.dirs:
         parser.error("no directories (or --run OUT)")
     runs = [load(d) for d in a.dirs]
