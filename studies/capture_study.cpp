@@ -207,13 +207,14 @@ std::string apply_overrides(const Options& o) {
       if (o.bending_damping >= 0.0) section.insert_or_assign("bending_damping", o.bending_damping);
       if (o.mass_damping >= 0.0) section.insert_or_assign("mass_damping", o.mass_damping);
     }
-  if (!o.rope_rope) {
-    toml::array& contacts = *root["contact"].as_array();
-    for (std::size_t k = contacts.size(); k-- > 0;)
-      if (contacts[k].as_table()->contains("other_cable"))
-        contacts.erase(contacts.begin() + static_cast<long>(k));
-  }
-  for (toml::node& c : *root["contact"].as_array()) {
+  toml::array* contacts = root["contact"].as_array();
+  if (!contacts)
+    throw std::invalid_argument("the scene has no [[contact]] entries (not a capture scene)");
+  if (!o.rope_rope)
+    for (std::size_t k = contacts->size(); k-- > 0;)
+      if ((*contacts)[k].as_table()->contains("other_cable"))
+        contacts->erase(contacts->begin() + static_cast<long>(k));
+  for (toml::node& c : *contacts) {
     toml::table& law = *c.as_table()->at("law").as_table();
     if (o.friction >= 0.0) law.insert_or_assign("friction", o.friction);
     if (o.contact_samples > 0 && c.as_table()->contains("shape"))

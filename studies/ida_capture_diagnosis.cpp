@@ -113,13 +113,14 @@ int main(int argc, char** argv) {
           for (toml::node& c : *ropes)
             c.as_table()->at("section").as_table()->insert_or_assign("axial_damping",
                                                                      o.axial_damping);
-    for (toml::node& c : *root["contact"].as_array()) {
-      toml::table& law = *c.as_table()->at("law").as_table();
-      if (o.friction >= 0.0) law.insert_or_assign("friction", o.friction);
-      if (o.regularization_speed > 0.0)
-        law.insert_or_assign("regularization_speed", o.regularization_speed);
-      if (o.onset_depth > 0.0) law.insert_or_assign("onset_depth", o.onset_depth);
-    }
+    if (toml::array* contacts = root["contact"].as_array())  // a scene may have none
+      for (toml::node& c : *contacts) {
+        toml::table& law = *c.as_table()->at("law").as_table();
+        if (o.friction >= 0.0) law.insert_or_assign("friction", o.friction);
+        if (o.regularization_speed > 0.0)
+          law.insert_or_assign("regularization_speed", o.regularization_speed);
+        if (o.onset_depth > 0.0) law.insert_or_assign("onset_depth", o.onset_depth);
+      }
     std::ostringstream text;
     text << root;
     scene = load_scene_from_string(text.str(), o.scene);
