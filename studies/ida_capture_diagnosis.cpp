@@ -22,6 +22,7 @@
 #include <string>
 
 #include "ancf/io/scene.hpp"
+#include "ancf/io/simulation.hpp"
 #include "ancf/solvers/ida_integrator.hpp"
 #include "ancf/system/ggl_problem.hpp"
 
@@ -129,10 +130,8 @@ int main(int argc, char** argv) {
     return 1;
   }
   const IntegratorSettings& s = scene.integrator;
-  GglScales scales;
-  if (s.ida_slope_position_scale || o.slope_position_scale)
-    scales.slope = SlopeScale::position_equivalent;
-  if (s.ida_twist_position_scale) scales.twist = TwistScale::position_equivalent;
+  GglScales scales = ida_scales(s);  // the scene's, as `ancf run` takes them
+  if (o.slope_position_scale) scales.slope = SlopeScale::position_equivalent;
   GglProblem problem(scene.model, scales, ContactPatternOptions{.policy = s.contact_pattern});
   problem.set_cable_tangent(o.tension_only_tangent ? CableTangent::tension_only : s.cable_tangent);
   problem.set_rod_frame_turn(s.rod_frame_turn);

@@ -30,7 +30,7 @@ namespace {
 class IdaBackend final : public Simulation::Backend {
  public:
   IdaBackend(const Model& model, const IntegratorSettings& s, const std::vector<double>& times)
-      : problem_(model, scales(s), ContactPatternOptions{.policy = s.contact_pattern}),
+      : problem_(model, ida_scales(s), ContactPatternOptions{.policy = s.contact_pattern}),
         // The cable tangent is chosen before IDA computes consistent initial values with it.
         ida_((problem_.set_cable_tangent(s.cable_tangent),
               problem_.set_rod_frame_turn(s.rod_frame_turn), problem_),
@@ -104,12 +104,6 @@ class IdaBackend final : public Simulation::Backend {
   }
 
  private:
-  static GglScales scales(const IntegratorSettings& s) {
-    GglScales scales;
-    if (s.ida_slope_position_scale) scales.slope = SlopeScale::position_equivalent;
-    if (s.ida_twist_position_scale) scales.twist = TwistScale::position_equivalent;
-    return scales;
-  }
   static IdaOptions options(const IntegratorSettings& s, const std::vector<double>& times) {
     IdaOptions o;
     o.rtol = s.rtol;
@@ -325,6 +319,13 @@ SimulationTimings Simulation::timings() const {
   SimulationTimings t;
   backend_->statistics(c, t);
   return t;
+}
+
+GglScales ida_scales(const IntegratorSettings& s) {
+  GglScales scales;
+  if (s.ida_slope_position_scale) scales.slope = SlopeScale::position_equivalent;
+  if (s.ida_twist_position_scale) scales.twist = TwistScale::position_equivalent;
+  return scales;
 }
 
 std::vector<double> output_times(double interval, double t_end) {

@@ -12,6 +12,7 @@
 
 #include "ancf/io/scene.hpp"
 #include "ancf/system/assembly.hpp"
+#include "ancf/system/ggl_problem.hpp"
 
 namespace ancf {
 
@@ -28,6 +29,10 @@ struct SimulationHooks {
   /// Called after every accepted step of generalized-α / every output of IDA with the time.
   std::function<void(double)> progress;
 };
+
+/// The scales of IDA's absolute tolerances that `s` selects ([integrator.ida] slope_scale and
+/// twist_scale; the rest derived from the model).
+[[nodiscard]] GglScales ida_scales(const IntegratorSettings& s);
 
 /// Output times interval, 2·interval, … below t_end, and t_end itself. Preconditions: > 0.
 [[nodiscard]] std::vector<double> output_times(double interval, double t_end);
