@@ -199,9 +199,8 @@ TEST(KirchhoffRodDynamics, WithoutFrameUpdatesTheTriadConvergesAtSecondOrder) {
 // the twist a slope change brings along is c·δr', c = −Pᵀ(a × t)/(1 + a·t) (0 once a = t), so
 // the slope force changes by exactly −f_α c, f_α the twist row's force. In a twist equilibrium
 // (f_α = Q_α, statics) the residual is unchanged; in dynamics f_α − Q_α = −ρJ α̈, and every
-// update moves the slope equations by the twist inertia force times c: that is why the tip triad
-// converges at first order where frames update (updates on a fixed time grid that the steps fall
-// on, tried, give the same order 1.1).
+// update moves the slope equations by the twist inertia force times c. (Not what makes the tip
+// triad converge at first order where frames update: removing it leaves the order; docs/rod.md.)
 TEST(KirchhoffRodDynamics, FrameUpdateChangesTheSlopeForcesByTheTwistForce) {
   const Model m = released_helix();
   const CableData& cable = m.cables()[0];

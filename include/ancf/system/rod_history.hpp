@@ -47,7 +47,8 @@ struct RodHistory {
 /// Why a threshold: the strain energy is a function of the physical state (centreline and
 /// material triads) and does not see a commit, but the constant twist inertia ρJ α̇² (see
 /// rod_twist_mass) measures the spin relative to R_i, so every frame update changes the
-/// equations of motion slightly (the slope rows by ρJ α̈ c, see above). Updating only after a
+/// equations of motion slightly (the slope rows by ρJ α̈ c, see above; and the twist kinematics,
+/// which sets the first-order convergence of the triad, docs/rod.md). Updating only after a
 /// finite turn keeps them smooth between rare updates, still far (min_turn ≪ π) from the
 /// smallest-rotation singularity.
 void commit_rod_history(const Model& model, std::span<const double> q, RodHistory& history,
