@@ -1,11 +1,12 @@
 #!/usr/bin/python3
 """Figures of the capture example from the outputs of ancf-capture (studies/capture_study.cpp).
 
-Usage: scripts/plot_capture.py DIR [DIR2 ...]
+Usage: scripts/plot_capture.py [--window T0 T1] DIR [DIR2 ...]
   DIR/samples.csv   -> DIR/capture_tilt.png, DIR/capture_drive.png, DIR/capture_contact.png
   DIR/snapshots.csv -> DIR/capture_snapshots.png (the mechanism at t = 0, the events, the end)
 With several DIRs (e.g. both integrators) the time series are overlaid in the first DIR's figures
-as well, labelled by the directory names.
+as well, labelled by the directory names. --window T0 T1 limits the time series to T0 <= t <= T1
+(e.g. the pole's swings between the ropes, to see a phase lead between meshes).
 Uses Debian's matplotlib (/usr/bin/python3) with the Agg backend; no numpy needed.
 """
 import csv
@@ -25,7 +26,7 @@ def read_columns(path):
     return {k: [float(r[k]) for r in rows] for k in rows[0]} if rows else {}
 
 
-def two_panels(path, title, panels, data, threshold=None):
+def two_panels(path, title, panels, data, threshold=None, window=None):
     """One figure of two stacked panels sharing t; panels = [(ylabel, [(column, label suffix)])]."""
     fig, ax = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
     for axis, (ylabel, columns) in zip(ax, panels):
@@ -36,6 +37,14 @@ def two_panels(path, title, panels, data, threshold=None):
     if threshold is not None:
         ax[0].axhline(threshold, color="grey", ls=":", lw=1)
     ax[0].legend(fontsize=7)
+    if window:
+        for axis in ax:  # y limits from the samples inside the window
+            axis.set_xlim(*window)
+            ys = [y for line in axis.get_lines() if len(line.get_xdata()) > 1
+                  for x, y in zip(line.get_xdata(), line.get_ydata()) if window[0] <= x <= window[1]]
+            if ys:
+                pad = 0.05 * (max(ys) - min(ys) or 1.0)
+                axis.set_ylim(min(ys) - pad, max(ys) + pad)
     ax[1].set_xlabel("t [s]")
     fig.suptitle(title)
     fig.tight_layout()
@@ -43,19 +52,22 @@ def two_panels(path, title, panels, data, threshold=None):
     plt.close(fig)
 
 
-def time_series(dirs):
+def time_series(dirs, window=None):
     data = [(os.path.basename(os.path.normpath(d)), read_columns(os.path.join(d, "samples.csv"))) for d in dirs]
     out = dirs[0]
     two_panels(os.path.join(out, "capture_tilt.png"), "Capture: pole alignment",
                [("pole tilt [deg]", [("tilt_deg", "")]),
-                ("axis offset at z = h/2 [mm]", [("lateral_offset_mm", "")])], data, threshold=0.3)
+                ("axis offset at z = h/2 [mm]", [("lateral_offset_mm", "")])], data, threshold=0.3,
+               window=window)
     two_panels(os.path.join(out, "capture_drive.png"), "Capture: ring drive",
                [("drive torque [N m]", [("drive_torque", "")]),
-                ("ring angle [deg]", [("ring_angle_deg", "")])], data, threshold=0.95 * 6.0)
+                ("ring angle [deg]", [("ring_angle_deg", "")])], data, threshold=0.95 * 6.0,
+               window=window)
     ropes = (1, 2, 3)
     two_panels(os.path.join(out, "capture_contact.png"), "Capture: contact and rope forces",
                [("rope-pole normal force [N]", [(f"pole_force_{i}", f" rope {i}") for i in ropes]),
-                ("rope end force at ring [N]", [(f"ring_tension_{i}", f" rope {i}") for i in ropes])], data)
+                ("rope end force at ring [N]", [(f"ring_tension_{i}", f" rope {i}") for i in ropes])], data,
+               window=window)
 
 
 def snapshots(d):
@@ -95,8 +107,15 @@ def snapshots(d):
 def main():
     if len(sys.argv) < 2:
         sys.exit(__doc__)
-    dirs = sys.argv[1:]
-    time_series(dirs)
+    args = sys.argv[1:]
+    window = None
+    if args[:1] == ["--window"]:
+        if len(args) < 4:
+            sys.exit(__doc__)
+        window = (float(args[1]), float(args[2]))
+        args = args[3:]
+    dirs = args
+    time_series(dirs, window)
     for d in dirs:
         snapshots(d)
     print("figures written to", ", ".join(dirs))
