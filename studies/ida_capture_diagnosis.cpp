@@ -90,9 +90,7 @@ std::string kind_of(const Model& model, Index i) {
     const Index local = c - cable.first_coordinate;
     if (local >= 0 && local < 6 * cable.node_count)
       return std::string(local % 6 < 3 ? "rope r" : "rope r'") + (velocity ? " rate" : "");
-    if (cable.rod && c >= cable.rod->twist_first &&
-        c < cable.rod->twist_first + cable.rod->twist_block_size(cable.node_count))
-      return std::string("rope twist") + (velocity ? " rate" : "");
+    if (cable.is_twist_coordinate(c)) return std::string("rope twist") + (velocity ? " rate" : "");
   }
   for (const BodyData& b : model.bodies())
     if (c >= b.first_coordinate && c < b.first_coordinate + 12)

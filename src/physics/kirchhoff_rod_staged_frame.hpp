@@ -5,8 +5,6 @@
 #pragma once
 
 #include <array>
-#include <cmath>
-#include <numbers>
 
 #include "ancf/physics/jet.hpp"
 #include "kirchhoff_rod_strains.hpp"
@@ -46,28 +44,15 @@ struct NodeFrame {
 // jets in its own tangent (3 variables) and only SR(Λ̄₁ → t̂₂) and ω in both (6).
 template <bool S>
 NodeFrame<S> staged_element_frame(const RodElementHistory& h, const Vec15& e) {
-  using std::sqrt;
   using J3 = Jet<3, S>;
   using J6 = Jet<6, S>;
-  const V3<J3> t1 = variables<J3>({e[3], e[4], e[5]}, 0),
-               t2 = variables<J3>({e[9], e[10], e[11]}, 0);
-  const J3 inv1 = 1.0 / sqrt(dot(t1, t1)), inv2 = 1.0 / sqrt(dot(t2, t2));
-  const V3<J3> u1 = scale(inv1, t1), u2 = scale(inv2, t2);
-  const V3<J3> r11 = constant<J3>(h.frame1.col(0)), r12 = constant<J3>(h.frame1.col(1)),
-               r13 = constant<J3>(h.frame1.col(2));
-  const J3 i1 = checked_inverse_denominator(1.0 + dot(r11, u1), "node 1 tangent");
-  const V3<J3> n12 = sr_column(r11, r12, u1, i1), n13 = sr_column(r11, r13, u1, i1);
-  const V3<J3> r21 = constant<J3>(h.frame2.col(0)), r22 = constant<J3>(h.frame2.col(1));
-  const J3 i2 = checked_inverse_denominator(1.0 + dot(r21, u2), "node 2 tangent");
-  const V3<J3> n22 = sr_column(r21, r22, u2, i2);
-  const V3<J6> u1_6 = promote<6>(u1, 0), u2_6 = promote<6>(u2, 3), n22_6 = promote<6>(n22, 3);
-  const J6 i12 = checked_inverse_denominator(1.0 + dot(u1_6, u2_6), "element end tangent");
-  const V3<J6> m2 = sr_column(u1_6, promote<6>(n12, 0), u2_6, i12),
-               m3 = sr_column(u1_6, promote<6>(n13, 0), u2_6, i12);
-  J6 omega = atan2(dot(n22_6, m3), dot(n22_6, m2));
-  omega =
-      omega + 2.0 * std::numbers::pi * std::round((h.omega - omega.v) / (2.0 * std::numbers::pi));
-  return {u1, n12, n13, J6(e[13]) + omega};
+  const UntwistedNodes<J3> n = untwisted_nodes(h, variables<J3>({e[3], e[4], e[5]}, 0),
+                                               variables<J3>({e[9], e[10], e[11]}, 0));
+  const V3<J6> u1 = promote<6>(n.u1, 0), u2 = promote<6>(n.u2, 3);
+  const J6 i12 = checked_inverse_denominator(1.0 + dot(u1, u2), "element end tangent");
+  const V3<J6> m2 = sr_column(u1, promote<6>(n.n12, 0), u2, i12),
+               m3 = sr_column(u1, promote<6>(n.n13, 0), u2, i12);
+  return {n.u1, n.n12, n.n13, J6(e[13]) + element_omega(promote<6>(n.n22, 3), m2, m3, h.omega)};
 }
 
 }  // namespace ancf::rod_detail

@@ -78,30 +78,47 @@ struct ElementFrame {
   T zeta, omega;
 };
 
+// The untwisted nodal triads Λ̄ᵢ = SR(Rᵢ → t̂ᵢ) of an element, as far as its frame needs them:
+// the unit tangents t̂₁, t̂₂, node 1's d₂, d₃ and node 2's d₂. Node i's values depend on tᵢ only
+// (staged_element_frame takes each as a jet in its own tangent).
+template <class T>
+struct UntwistedNodes {
+  V3<T> u1, u2, n12, n13, n22;
+};
+template <class T>
+UntwistedNodes<T> untwisted_nodes(const RodElementHistory& h, const V3<T>& t1, const V3<T>& t2) {
+  using std::sqrt;
+  const T inv1 = 1.0 / sqrt(dot(t1, t1)), inv2 = 1.0 / sqrt(dot(t2, t2));
+  const V3<T> u1 = scale(inv1, t1), u2 = scale(inv2, t2);
+  const V3<T> r11 = constant<T>(h.frame1.col(0)), r12 = constant<T>(h.frame1.col(1)),
+              r13 = constant<T>(h.frame1.col(2));
+  const T i1 = checked_inverse_denominator(1.0 + dot(r11, u1), "node 1 tangent");
+  const V3<T> r21 = constant<T>(h.frame2.col(0)), r22 = constant<T>(h.frame2.col(1));
+  const T i2 = checked_inverse_denominator(1.0 + dot(r21, u2), "node 2 tangent");
+  return {u1, u2, sr_column(r11, r12, u1, i1), sr_column(r11, r13, u1, i1),
+          sr_column(r21, r22, u2, i2)};
+}
+
+// The angle ω about t̂₂ from SR(Λ̄₁ → t̂₂) (columns m₂, m₃) to Λ̄₂ (d₂ = n₂₂), continuous from
+// the committed value: the principal value plus the multiple of 2π nearest to `committed`.
+template <class T>
+T element_omega(const V3<T>& n22, const V3<T>& m2, const V3<T>& m3, double committed) {
+  using std::atan2;
+  const T omega = atan2(dot(n22, m3), dot(n22, m2));
+  return omega + 2.0 * std::numbers::pi *
+                     std::round((committed - value_of(omega)) / (2.0 * std::numbers::pi));
+}
+
 // From the nodal tangents t₁, t₂ and twist α₂ (any scalar types that mix with T).
 template <class T>
 ElementFrame<T> element_frame(const RodElementHistory& h, const V3<T>& t1, const V3<T>& t2,
                               const T& alpha2) {
-  using std::atan2;
-  using std::sqrt;
-  const T inv1 = 1.0 / sqrt(dot(t1, t1)), inv2 = 1.0 / sqrt(dot(t2, t2));
-  const V3<T> u1 = scale(inv1, t1), u2 = scale(inv2, t2);
-  // Λ̄ᵢ = SR(Rᵢ → t̂ᵢ)
-  const V3<T> r11 = constant<T>(h.frame1.col(0)), r12 = constant<T>(h.frame1.col(1)),
-              r13 = constant<T>(h.frame1.col(2));
-  const T i1 = checked_inverse_denominator(1.0 + dot(r11, u1), "node 1 tangent");
-  const V3<T> n12 = sr_column(r11, r12, u1, i1), n13 = sr_column(r11, r13, u1, i1);
-  const V3<T> r21 = constant<T>(h.frame2.col(0)), r22 = constant<T>(h.frame2.col(1));
-  const T i2 = checked_inverse_denominator(1.0 + dot(r21, u2), "node 2 tangent");
-  const V3<T> n22 = sr_column(r21, r22, u2, i2);
+  const UntwistedNodes<T> n = untwisted_nodes(h, t1, t2);
   // SR(Λ̄₁ → t̂₂) and the angle ω about t̂₂ from it to Λ̄₂.
-  const T i12 = checked_inverse_denominator(1.0 + dot(u1, u2), "element end tangent");
-  const V3<T> m2 = sr_column(u1, n12, u2, i12), m3 = sr_column(u1, n13, u2, i12);
-  T omega = atan2(dot(n22, m3), dot(n22, m2));
-  // Continuous from the committed value: add the multiple of 2π nearest to it.
-  omega = omega + 2.0 * std::numbers::pi *
-                      std::round((h.omega - value_of(omega)) / (2.0 * std::numbers::pi));
-  return {u1, n12, n13, alpha2 + omega, omega};
+  const T i12 = checked_inverse_denominator(1.0 + dot(n.u1, n.u2), "element end tangent");
+  const V3<T> m2 = sr_column(n.u1, n.n12, n.u2, i12), m3 = sr_column(n.u1, n.n13, n.u2, i12);
+  const T omega = element_omega(n.n22, m2, m3, h.omega);
+  return {n.u1, n.n12, n.n13, alpha2 + omega, omega};
 }
 
 template <class T>

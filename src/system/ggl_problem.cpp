@@ -19,9 +19,7 @@ bool is_length(const Model& model, Index i) {
   for (const CableData& c : model.cables()) {
     const Index local = i - c.first_coordinate;
     if (local >= 0 && local < 6 * c.node_count) return local % 6 < 3;
-    if (c.rod && i >= c.rod->twist_first &&
-        i < c.rod->twist_first + c.rod->twist_block_size(c.node_count))
-      return false;  // a twist angle [rad]
+    if (c.is_twist_coordinate(i)) return false;  // a twist angle [rad]
   }
   for (const BodyData& b : model.bodies()) {
     const Index local = i - b.first_coordinate;

@@ -67,6 +67,11 @@ struct CableData {
     if (i < 12) return first_coordinate + 6 * j + i;
     return i < 14 ? rod->twist_first + j + (i - 12) : rod->interior_first + j;
   }
+  /// True if model coordinate i is one of this rod's twist coordinates (node angles α and
+  /// interior twists β, dimensionless); false for a cable without twist.
+  [[nodiscard]] bool is_twist_coordinate(Index i) const {
+    return rod && i >= rod->twist_first && i < rod->twist_first + rod->twist_block_size(node_count);
+  }
 };
 
 /// A moment fixed in space [N m] at a rod node (scaled by the load factor), with the slots of its
