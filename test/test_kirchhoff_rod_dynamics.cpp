@@ -200,8 +200,8 @@ TEST(KirchhoffRodDynamics, WithoutFrameUpdatesTheTriadConvergesAtSecondOrder) {
 TEST(KirchhoffRodDynamics, FrameUpdatesAtEveryStepConvergeAtSecondOrder) {
   const Model m = released_helix(Vec3(0.3, 0.0, 0.2));
   const Agreement every_step = expect_integrators_agree(m, "frames updated at every step", 0.0);
-  std::printf("frame updates in IDA: %ld, IDA steps %ld; d2 order %.2f\n",
-              every_step.frame_updates, every_step.ida_steps, every_step.d2.order);
+  std::printf("frame updates in IDA: %ld, IDA steps %ld; d2 order %.2f\n", every_step.frame_updates,
+              every_step.ida_steps, every_step.d2.order);
   EXPECT_GT(every_step.frame_updates, 100);  // IDA updated at (nearly) every one of its steps
   EXPECT_GT(every_step.d2.order, 1.7);       // second order, against 1.15 with updates after 0.1
   const Tip t0 = genalpha_tip(m, 1.25e-4, 0.0), t1 = genalpha_tip(m, 1.25e-4, kRodCommitTurn),

@@ -510,6 +510,14 @@ TEST(RodTwistConstraint, StaticTwistByATorqueOnTheBody) {
   EXPECT_NEAR(value("mid.torque"), torque, 1e-8);
   for (const char* c : {"end.mx", "end.my", "root.mx", "root.my", "end.fx", "end.fy", "end.fz"})
     EXPECT_NEAR(value(c), 0.0, 1e-8) << c;
+  // Node 2 of 6 sits at s = L/3: its material axis d₂ (reference (1, 0, 0)) has turned by θ/3
+  // about the shaft's axis z.
+  const double psi = theta / 3.0;
+  std::printf("  mid.d2 (%.12f, %.12f, %.12f), closed form (%.12f, %.12f, 0)\n", value("mid.d2x"),
+              value("mid.d2y"), value("mid.d2z"), std::cos(psi), std::sin(psi));
+  EXPECT_NEAR(value("mid.d2x"), std::cos(psi), 1e-9);
+  EXPECT_NEAR(value("mid.d2y"), std::sin(psi), 1e-9);
+  EXPECT_NEAR(value("mid.d2z"), 0.0, 1e-9);
 }
 
 // Fundamental torsional frequency of a shaft (GJ, ρJ, L) fixed at one end with a disk J_d at the

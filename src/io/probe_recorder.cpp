@@ -29,7 +29,7 @@ std::vector<std::string> suffixes(Probe::Kind kind) {
     case Probe::Kind::reaction:
       return {"fx", "fy", "fz", "mx", "my", "mz"};
     case Probe::Kind::rod:
-      return {"twist", "torque", "K2", "K3"};
+      return {"twist", "torque", "K2", "K3", "d2x", "d2y", "d2z"};
   }
   return {};
 }
@@ -156,9 +156,9 @@ const std::vector<double>& ProbeRecorder::evaluate(const SystemState& state, Wor
         break;
       }
       case Probe::Kind::rod: {
-        // Twist angle α of the node; the torque GJ(K₁ − K₁⁰) the energy sees (projected over
-        // the element by default) and the curvatures K₂, K₃ at the middle of the element
-        // starting at the node (the last node: the element ending there).
+        // Twist angle α of the node (relative to its committed frame); the torque GJ(K₁ − K₁⁰) the
+        // energy sees (projected over the element by default) and the curvatures K₂, K₃ at the
+        // middle of the element starting at the node (the last node: the element ending there).
         const CableData& c = model_.cables()[p.target];
         const RodHistory& h = state.rod_history ? *state.rod_history : ws.rods;
         const Index j = std::min<Index>(p.node, c.node_count - 2);
@@ -173,6 +173,9 @@ const std::vector<double>& ProbeRecorder::evaluate(const SystemState& state, Wor
                     rod_torsion_strain(c.rod->section, ref, ref_history, now_history, e, 0.5);
         row_[k++] = now.curvature[1];
         row_[k++] = now.curvature[2];
+        // The node's material axis d₂: unlike α it does not depend on the frame history.
+        const Vec3 d2 = rod_node_triad(model_, p.target, p.node, as_span(state.q), h).col(1);
+        for (int d = 0; d < 3; ++d) row_[k++] = d2[d];
         break;
       }
       case Probe::Kind::drive: {
