@@ -58,23 +58,34 @@ def main():
     ap.add_argument("--h0", type=float, default=1e-3, help="largest step [s]")
     ap.add_argument("--levels", type=int, default=6, help="number of steps h0 / 2^k")
     ap.add_argument("--ida", action="store_true", help="also IDA's steps (rtol 1e-8)")
+    ap.add_argument("--expect-order", action="append", default=[], metavar="TURN:MIN",
+                    help="exit 1 unless the last observed order for rod_frame_turn TURN is >= MIN "
+                    "(the smoke test in test/CMakeLists.txt)")
     ap.add_argument("--ancf", default="build-release/src/app/ancf")
     ap.add_argument("--out", default=None, help="keep the runs here (default: a temporary dir)")
     a = ap.parse_args()
     rho_js = [float(x) for x in a.rho_j.split(",")]
     turns = [float(x) for x in a.turns.split(",")]
     steps = [a.h0 / 2**k for k in range(a.levels)]
+    expected = {float(t): float(m) for t, m in (x.split(":") for x in a.expect_order)}
     out = a.out or tempfile.mkdtemp(prefix="rod_frame_turn_")
     print(f"runs in {out}")
+    failed = []
     for scene in a.scene or SCENES:
         for rho_j in rho_js:
-            study(a, scene, rho_j, turns, steps, out)
+            last_orders = study(a, scene, rho_j, turns, steps, out)
+            failed += [f"{os.path.basename(scene)}, rho J {rho_j:g}, turn {t:g}: order "
+                       f"{last_orders[t]:.2f} < {m:g}" for t, m in expected.items()
+                       if t in last_orders and last_orders[t] < m]
+    if failed:
+        raise SystemExit("observed orders below the expected:\n  " + "\n  ".join(failed))
 
 
 def study(a, scene, rho_j, turns, steps, out):
-    """One scene at one polar inertia: the step-size table, the spread, IDA's steps."""
+    """One scene at one polar inertia: the step-size table, the spread, IDA's steps. Returns the
+    last observed order per turn."""
     name = os.path.splitext(os.path.basename(scene))[0]
-    finest = {}
+    finest, last_orders = {}, {}
     print(f"\n{name}, rho J = {rho_j:g} kg m; generalized-alpha (rtol 1e-10), tip d2 at t_end")
     print("| rod_frame_turn | |d2_h - d2_h/2| for h = " + ", ".join(f"{h:.4g}" for h in steps[:-1])
           + " | observed orders |")
@@ -91,6 +102,8 @@ def study(a, scene, rho_j, turns, steps, out):
         orders = [math.log2(diffs[i] / diffs[i + 1]) for i in range(len(diffs) - 1)
                   if diffs[i + 1] > 0.0]
         finest[turn] = (d2s[-1], diffs[-1])
+        if orders:
+            last_orders[turn] = orders[-1]
         print(f"| {turn:g} | " + ", ".join(f"{x:.2e}" for x in diffs) + " | "
               + ", ".join(f"{p:.2f}" for p in orders) + " |")
     base = finest.get(turns[0])
@@ -108,6 +121,7 @@ def study(a, scene, rho_j, turns, steps, out):
             _, counters = run(a.ancf, scene, d, sets, "ida")
             parts.append(f"turn {turn:g}: {counters['steps']} steps")
         print("IDA (rtol 1e-8): " + "; ".join(parts))
+    return last_orders
 
 
 if __name__ == "__main__":
