@@ -166,3 +166,36 @@ TEST(AncfRun, RotatingDampedPendulumRunsWithBothIntegrators) {
   EXPECT_NE(json.find("\"step halvings\": 0,"), std::string::npos) << json;
   EXPECT_NE(json.find("\"steps\": 1000,"), std::string::npos) << json;
 }
+
+// A rod scene records its node-frame updates in run.json (docs/scenes.md; docs/rod.md "Frame
+// updates"): none with rod_frame_turn = 2 (the helix turns less within 0.1 s), one per accepted
+// step with 0, some in between with the default 0.1; a cable scene has no such counter. The rod
+// probe writes the material axis d₂.
+TEST(AncfRun, RodRunRecordsFrameUpdates) {
+  const fs::path scene = kSource / "studies/scenes/rod_helix_spin.toml";
+  const fs::path out = fs::temp_directory_path() / "ancf_smoke_rod_frames";
+  auto updates = [&](const std::string& turn) {
+    fs::remove_all(out);
+    EXPECT_EQ(run("run " + scene.string() + " --set integrator.rod_frame_turn=" + turn +
+                  " --quiet --out " + out.string()),
+              0);
+    const std::string json = text(out / "run.json");
+    const std::string key = "\"rod frame updates\": ";
+    const std::size_t at = json.find(key);
+    EXPECT_NE(at, std::string::npos) << json;
+    return at == std::string::npos ? -1L : std::stol(json.substr(at + key.size()));
+  };
+  EXPECT_EQ(updates("2.0"), 0);
+  const long some = updates("0.1");
+  EXPECT_GT(some, 0);
+  EXPECT_LT(some, 400);
+  EXPECT_EQ(updates("0.0"), 400);  // 0.1 s at the scene's step 2.5e-4
+  EXPECT_NE(lines(out / "probes.csv")[0].find("tip_frame.d2x,tip_frame.d2y,tip_frame.d2z"),
+            std::string::npos);
+  const fs::path cable_out = fs::temp_directory_path() / "ancf_smoke_cable_frames";
+  fs::remove_all(cable_out);
+  ASSERT_EQ(run("run " + (kSource / "studies/scenes/cable_drop.toml").string() +
+                " --t-end 0.01 --quiet --out " + cable_out.string()),
+            0);
+  EXPECT_EQ(text(cable_out / "run.json").find("rod frame updates"), std::string::npos);
+}

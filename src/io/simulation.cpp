@@ -27,6 +27,13 @@ struct Simulation::Backend {
 
 namespace {
 
+/// Rod scenes: how often the node frames were updated (docs/rod.md, "Frame updates"; each update
+/// re-bases the twist's spin for the constant twist inertia, so the count belongs to the run's
+/// record as the step counts do).
+void add_rod_counters(const Model& model, const Workspace& ws, SimulationCounters& c) {
+  if (model.has_rods()) c.push_back({"rod frame updates", ws.rods.frame_updates});
+}
+
 class IdaBackend final : public Simulation::Backend {
  public:
   IdaBackend(const Model& model, const IntegratorSettings& s, const std::vector<double>& times)
@@ -78,6 +85,7 @@ class IdaBackend final : public Simulation::Backend {
          {"symbolic analyses", st.symbolic_analyses},
          {"pattern non-zeros (largest)", problem_.contact_pattern().statistics().most_nonzeros},
          {"contact samples evaluated", problem_.workspace().narrow_phase_samples}};
+    add_rod_counters(problem_.model(), problem_.workspace(), c);
     const Workspace& ws = problem_.workspace();
     const double kernels = ws.element_seconds, contact = ws.contact_seconds;
     timings = {
@@ -185,6 +193,7 @@ class GeneralizedAlphaBackend final : public Simulation::Backend {
     if (o.max_damping_halvings > 0) c.push_back({"damped iterations", st.damped_iterations});
     if (o.refresh_on_active_set_change)
       c.push_back({"active-set refreshes", st.active_set_refreshes});
+    add_rod_counters(problem_.model(), problem_.workspace(), c);
     const Workspace& ws = problem_.workspace();
     const double kernels = ws.element_seconds, contact = ws.contact_seconds;
     timings = {{"wall", st.wall_seconds},
