@@ -4,13 +4,18 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <numbers>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "ancf/io/scene.hpp"
 #include "ancf/scenes/pendulums.hpp"
+#include "ancf/system/assembly.hpp"
 
 namespace fs = std::filesystem;
 using namespace ancf;
@@ -288,4 +293,51 @@ TEST(SceneFiles, DocumentedExampleLoads) {
   const Scene s = load_scene_from_string(text, "docs/scenes.md");
   EXPECT_EQ(s.model.contact_pair_count(), 1);
   EXPECT_EQ(s.model.drives().size(), 1u);
+}
+
+// docs/rod.md: a rod is exactly stress-free in any reference shape with its material frame. The
+// element tests check that on element data; here the whole path from a scene: each geometry kind
+// (straight and a non-planar polyline with a given frame normal, arc and helix with the derived
+// frame) gives a model whose assembled residual at the reference (no loads, at rest) is zero to
+// round-off and whose strain energy is zero. Bound: the element test's 64 ε EA per element, two
+// elements per node.
+TEST(SceneFiles, RodReferencesOfEveryGeometryAreStressFree) {
+  const std::string section = R"(
+[rod.section]
+EA = 1.0e5
+GJ = 0.7
+EI2 = 1.0
+EI3 = 1.4
+mass_per_length = 0.2
+radius = 0.01
+)";
+  const std::vector<std::pair<std::string, std::string>> rods = {
+      {"straight",
+       R"(geometry = { kind = "straight", start = [0.0, 0.0, 0.0], end = [0.4, 0.3, 0.2] }
+frame = { normal = [0.0, 0.0, 1.0] })"},
+      {"polyline",
+       R"(geometry = { kind = "polyline", points = [[0.0, 0.0, 0.0], [0.3, 0.0, 0.0], [0.5, 0.2, 0.1], [0.6, 0.4, 0.35]] }
+frame = { normal = [0.2, -0.3, 0.9] })"},
+      {"arc",
+       R"(geometry = { kind = "arc", centre = [0.0, 0.0, 0.0], u = [1.0, 0.0, 0.0], w = [0.0, 0.6, 0.8], radius = 0.25, angle = 2.5 })"},
+      {"helix",
+       R"(geometry = { kind = "helix", axis = [0.0, 0.0, 1.0], radius = 0.1, twist = 7.0, rise = 0.3 })"}};
+  const double bound = 2.0 * 64.0 * std::numeric_limits<double>::epsilon() * 1.0e5;
+  for (const auto& [kind, geometry] : rods) {
+    SCOPED_TRACE(kind);
+    const Scene s = load_scene_from_string(
+        "[[rod]]\nname = \"r\"\nelements = 9\n" + geometry + "\n" + section, kind + ".toml");
+    const Model& m = s.model;
+    ASSERT_TRUE(m.has_rods());
+    const SystemState state = SystemState::initial(m);
+    Workspace ws(m);
+    VecX residual(m.system_size());
+    assemble_residual(m, state, 1.0, ws, as_span(residual));
+    const double largest = residual.lpNorm<Eigen::Infinity>();
+    const double energy = strain_energy(m, state.q, ws.rods);
+    std::printf("%s reference: largest residual %.2e (bound %.2e), strain energy %.2e J\n",
+                kind.c_str(), largest, bound, energy);
+    EXPECT_LE(largest, bound);
+    EXPECT_LE(std::abs(energy), 1e-20);
+  }
 }
