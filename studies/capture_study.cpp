@@ -3,26 +3,21 @@
 //
 // Usage: ancf-capture [--scene studies/scenes/capture.toml] [--integrator genalpha|ida]
 //                     [--elements N] [--t-end T] [--omega-max DEG_PER_S] [--tilt DEG]
-//                     [--friction MU] [--regularization-speed V] [--step H] [--rtol R] [--rho-inf
-//                     R] [--axial-damping C]
-//                     [--bending EI] [--bending-damping CB] [--mass-damping ALPHA] [--no-rope-rope]
-//                     [--index2] [--free-pole]
+//                     [--friction MU] [--regularization-speed V] [--step H] [--rtol R]
+//                     [--rho-inf R] [--axial-damping C] [--bending EI] [--bending-damping CB]
+//                     [--mass-damping ALPHA] [--no-rope-rope] [--index2] [--free-pole]
 //                     [--contact-pattern near|all] [--contact-samples K] [--set KEY=VALUE ...]
 //                     [--scene-set KEY=VALUE ...] [--out DIR]
 //                     [--error-control] [--error-rtol R] [--error-atol A] [--h-min H] [--h-max H]
-//                     [--step-change
-//                     automatic|restart|rescale|rescale_with_velocity|rescale_climbs]
-//                     [--refresh-on-contact] [--newton-damping N]
-//                     [--fast]
+//                     [--step-change MODE] [--refresh-on-contact] [--newton-damping N] [--fast]
+// MODE: automatic|restart|rescale|rescale_with_velocity|rescale_climbs.
 // --set sets any key of the scene's [integrator] table by its dotted path below it, e.g.
-// --set genalpha.step=5e-4 or --set ida.max_order=2 (VALUE is a TOML value: number, "string",
-// true).
+// --set genalpha.step=5e-4 or --set ida.max_order=2 (VALUE: a TOML number, "string" or true).
 // --scene-set sets any key of the scene by its dotted path from the file's root, as in the sweep
 // files and SceneError messages, e.g. --scene-set 'rod[0].grading.band_ratio=0.3' or
 // --scene-set 'contact[0].law.stiffness=1.5e7'; applied last (after the flags and --set), and
 // checked by the scene rules as if written in the file.
-// `--contact-pattern all` reserves every candidate contact block (the first design) to measure
-// against.
+// `--contact-pattern all` reserves every candidate contact block (the first design), to compare.
 // --contact-samples K: samples per element of the rope-shape (shaft, knob) pairs; mesh studies
 // scale it with 1/elements to keep the contact sample spacing fixed (docs/capture.md).
 // --error-control etc. set the [integrator.genalpha] keys of error-controlled stepping
@@ -400,8 +395,8 @@ int main(int argc, char** argv) {
       .set("cable_tangent",
            s.cable_tangent == CableTangent::tension_only ? "tension_only" : "exact")
       .set("rod_frame_turn", s.rod_frame_turn)
-      .set("ida_slope_scale", s.ida_slope_position_scale ? "position_equivalent" : "unit")
-      .set("ida_twist_scale", s.ida_twist_position_scale ? "position_equivalent" : "unit")
+      .set("ida_slope_scale", ida_scale_name(s.ida_slope_position_scale))
+      .set("ida_twist_scale", ida_scale_name(s.ida_twist_position_scale))
       .set("genalpha_ceiling_rate", s.ga_controller.easy_rate)
       .set("genalpha_stepping", s.ga_error_controlled ? "error_controlled" : "fixed")
       .set("genalpha_error_rtol", s.ga_controller.rtol)

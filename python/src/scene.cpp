@@ -31,14 +31,13 @@ py::dict integrator_dict(const IntegratorSettings& s) {
   d["t_end"] = s.t_end;
   d["rtol"] = s.rtol;
   d["contact_pattern"] = s.contact_pattern == ContactPatternPolicy::all ? "all" : "near";
-  d["ida"] = py::dict(
-      py::arg("max_step") = s.max_step, py::arg("max_order") = s.max_order,
-      py::arg("atol_position") = s.ida_atol_position,
-      py::arg("atol_velocity") = s.ida_atol_velocity,
-      py::arg("atol_multiplier") = s.ida_atol_multiplier,
-      py::arg("linear_solver") = s.ida_sundials_klu ? "sundials_klu" : "ancf_klu",
-      py::arg("slope_scale") = s.ida_slope_position_scale ? "position_equivalent" : "unit",
-      py::arg("twist_scale") = s.ida_twist_position_scale ? "position_equivalent" : "unit");
+  d["ida"] = py::dict(py::arg("max_step") = s.max_step, py::arg("max_order") = s.max_order,
+                      py::arg("atol_position") = s.ida_atol_position,
+                      py::arg("atol_velocity") = s.ida_atol_velocity,
+                      py::arg("atol_multiplier") = s.ida_atol_multiplier,
+                      py::arg("linear_solver") = s.ida_sundials_klu ? "sundials_klu" : "ancf_klu",
+                      py::arg("slope_scale") = ida_scale_name(s.ida_slope_position_scale),
+                      py::arg("twist_scale") = ida_scale_name(s.ida_twist_position_scale));
   d["genalpha"] = py::dict(
       py::arg("step") = s.step, py::arg("rho_infinity") = s.rho_infinity,
       py::arg("formulation") = s.stabilized_index2 ? "stabilized_index2" : "index3",

@@ -25,8 +25,8 @@ JsonObject run_json(const Scene& scene, const RunRecord& record, const RunOutput
   if (ida)
     opts.set("max_step", s.max_step)
         .set("max_order", static_cast<long>(s.max_order))
-        .set("slope_scale", s.ida_slope_position_scale ? "position_equivalent" : "unit")
-        .set("twist_scale", s.ida_twist_position_scale ? "position_equivalent" : "unit");
+        .set("slope_scale", ida_scale_name(s.ida_slope_position_scale))
+        .set("twist_scale", ida_scale_name(s.ida_twist_position_scale));
   else
     opts.set("step", s.step)
         .set("rho_infinity", s.rho_infinity)

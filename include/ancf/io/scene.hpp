@@ -63,6 +63,12 @@ struct IntegratorSettings {
   double rod_frame_turn = kRodCommitTurn;
 };
 
+/// The scene's word for an IDA tolerance-scale choice ([integrator.ida] slope_scale and
+/// twist_scale): "position_equivalent" or "unit". For records (run.json, Python, events.json).
+[[nodiscard]] inline const char* ida_scale_name(bool position_equivalent) {
+  return position_equivalent ? "position_equivalent" : "unit";
+}
+
 /// One probe of the output time series (probes.csv columns, docs/scenes.md).
 struct Probe {
   enum class Kind { node, body, energy, constraint_violation, contact, drive, reaction, rod };
