@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -64,6 +65,29 @@ TEST(SceneFiles, FuzzMalformedCorpusGivesSceneErrors) {
     }
   }
   EXPECT_GE(files, 10u);
+}
+
+// The fuzz target's seed corpus (test/fuzz/corpus) starts from valid scenes so that mutations reach
+// the model builder; those seeds are copies, and a format change must not leave them refused. Each
+// seed not named malformed_* loads and builds a model with unknowns.
+TEST(SceneFiles, FuzzSeedCorpusLoads) {
+  std::size_t seeds = 0, rods = 0;
+  for (const fs::path& file : scenes_in(kSource / "test/fuzz/corpus")) {
+    if (file.filename().string().rfind("malformed_", 0) == 0) continue;
+    SCOPED_TRACE(file.filename().string());
+    ++seeds;
+    try {
+      const Scene scene = load_scene(file.string());
+      EXPECT_GT(scene.model.coordinate_count(), 0);
+      if (std::ifstream in(file);
+          std::string(std::istreambuf_iterator<char>(in), {}).find("[[rod]]") != std::string::npos)
+        ++rods;
+    } catch (const SceneError& e) {
+      ADD_FAILURE() << e.what();
+    }
+  }
+  EXPECT_GE(seeds, 10u);
+  EXPECT_GE(rods, 5u);  // the rod loader (issue 16) is seeded too
 }
 
 TEST(SceneFiles, EachMalformedSceneGivesItsLocatedMessage) {

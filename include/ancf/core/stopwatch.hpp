@@ -60,7 +60,8 @@ class TickClock {
   static bool invariant_tsc() noexcept {
 #if ANCF_HAS_TSC
     unsigned a = 0, b = 0, c = 0, d = 0;
-    if (__get_cpuid_max(0x80000000u, nullptr) < 0x80000007u) return false;
+    // GCC's __get_cpuid_max returns unsigned, clang's int: compare as unsigned in both.
+    if (static_cast<unsigned>(__get_cpuid_max(0x80000000u, nullptr)) < 0x80000007u) return false;
     __get_cpuid(0x80000007u, &a, &b, &c, &d);
     return (d & (1u << 8)) != 0;
 #else
