@@ -268,6 +268,41 @@ TEST(KirchhoffRodDynamics, FrameUpdateChangesTheSlopeForcesByTheTwistForce) {
 // twist_scale, GglScales): a twist error counts as the motion r_g δα it gives the section's
 // points. The integrators still agree as above (the tip position to generalized-α's error, d₂ to
 // that plus rtol × L/r_g), and IDA takes no more steps than with unit scales.
+// A step whose Newton iterate turns a node's tangent over (the element throws std::domain_error:
+// the smallest rotation from the committed frame is undefined) is a failed attempt, and the step
+// is halved (SecondOrderProblem's contract, as IDA's DaeProblem has it). A straight cantilever
+// rolled up by a suddenly applied end moment 2πEI/L with a first step of 0.1 s overshoots at t = 0;
+// before this was handled the run ended there with the element's message.
+TEST(KirchhoffRodDynamics, StepWhoseIterateTurnsATangentOverIsHalved) {
+  const CableGeometry g = straight_cable(Vec3::Zero(), Vec3(1, 0, 0), 16);
+  RodSection r;
+  r.axial_stiffness = 1e4;
+  r.torsional_stiffness = 1.0;
+  r.bending_stiffness_2 = r.bending_stiffness_3 = 1.0;
+  r.mass_per_length = 1.0;
+  r.polar_inertia = 1e-4;
+  ModelBuilder b;
+  const Index rod =
+      b.add_rod("rod", g, CableSection{}, r, rod_frames_with_normal(g, Vec3::UnitY()));
+  b.pin("clamp.r", {rod, 0}, Vec3::Zero());
+  b.align_slope("clamp.t", {rod, 0}, Vec3::UnitX());
+  b.fix_twist("clamp.twist", {rod, 0});
+  b.add_node_moment({rod, -1}, Vec3(0.0, 0.0, 2.0 * std::numbers::pi));
+  const Model m = b.finalize();
+  MultibodyProblem problem(m);
+  GeneralizedAlphaOptions o;
+  o.step_size = 0.1;
+  GeneralizedAlphaStepper stepper(problem, o);
+  stepper.initialize(0.0);
+  ASSERT_NO_THROW(stepper.advance_to(0.2));
+  const GeneralizedAlphaStatistics& st = stepper.statistics();
+  std::printf("roll-up, h = 0.1 s: %ld steps, %ld halvings, %ld Newton iterations to t = 0.2 s\n",
+              static_cast<long>(st.steps), static_cast<long>(st.step_halvings),
+              static_cast<long>(st.newton_iterations));
+  EXPECT_GE(st.step_halvings, 1);
+  EXPECT_TRUE(stepper.positions().allFinite());
+}
+
 TEST(KirchhoffRodDynamics, PositionEquivalentTolerancesKeepTheAgreement) {
   const GglScales scaled{.slope = SlopeScale::position_equivalent,
                          .twist = TwistScale::position_equivalent};

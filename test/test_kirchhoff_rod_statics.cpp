@@ -301,6 +301,38 @@ TEST(KirchhoffRodStatics, LoadPathIndependence) {
   EXPECT_GT(std::abs(tip(m, a.y).z()), 0.3);  // a genuinely large deflection
 }
 
+// A load increment whose Newton iterate turns a node's tangent over (1 + t·t_ref ≤ 1e-8: the
+// smallest rotation from the committed frame is undefined there, and the element throws
+// std::domain_error) is a failed iteration: the increment is cut, not the solve aborted. A full
+// circle (θ = ML/EI = 2π) in two increments overshoots at the first; before this was handled the
+// exception ended the program. Also: ten equal increments are ten (their floating-point sum
+// 1 − 1.1e-16 used to add an eleventh, empty one).
+TEST(KirchhoffRodStatics, IncrementThatTurnsATangentOverIsCut) {
+  const double length = 1.0, ei = 1.0, theta = 2.0 * kPi;
+  const CableGeometry g = straight_cable(Vec3::Zero(), Vec3(length, 0, 0), 16);
+  ModelBuilder b;
+  const Index rod = b.add_rod("rod", g, CableSection{}, rod_section(1e4, 1.0, ei),
+                              rod_frames_with_normal(g, Vec3::UnitY()));
+  clamp(b, rod, g);
+  b.add_node_moment({rod, -1}, Vec3(0, 0, theta * ei / length));
+  const Model m = b.finalize();
+  const Solved two = solve(m, 2), ten = solve(m, 10);
+  const Index n = m.coordinate_count();
+  const double diff = (two.y.head(n) - ten.y.head(n)).lpNorm<Eigen::Infinity>();
+  std::printf(
+      "full circle in 2 increments: %d cuts, %d increments taken; 10 increments: %d taken; tip "
+      "(%.3e %.3e %.3e), 2 vs 10 differ by %.2e\n",
+      two.stats.step_cuts, two.stats.load_steps, ten.stats.load_steps, tip(m, two.y).x(),
+      tip(m, two.y).y(), tip(m, two.y).z(), diff);
+  EXPECT_GE(two.stats.step_cuts, 1);
+  EXPECT_EQ(ten.stats.step_cuts, 0);
+  EXPECT_EQ(ten.stats.load_steps, 10);
+  // The same equilibrium to Newton's tolerance (1e-11 max(1, ‖q‖∞), quadratic convergence).
+  EXPECT_LT(diff, 2e-11 * std::max(1.0, ten.y.head(n).lpNorm<Eigen::Infinity>()));
+  // A closed circle: the tip is back at the clamp (u = −L, v = 0) up to the O(h⁴) mesh error.
+  EXPECT_LT(tip(m, ten.y).norm(), 1e-3 * length);
+}
+
 // Zero-frequency modes at the stress-free reference (count of |ω²| ≤ 1e3 ε max ω²).
 Index zero_modes(const Model& m) {
   const NaturalModes modes = natural_modes_at_initial_equilibrium(m);

@@ -369,6 +369,7 @@ void GeneralizedAlphaStepper::step(double t_limit) {
       }
       last_error_ = err;
       accept(t1, h, on_base, last);
+      unevaluable_.clear();  // keeps its capacity: no allocation in later steps
       if (steps_since_climb_ >= 0 && ++steps_since_climb_ > recovery_wait_) {
         recovery_wait_ = options_.recovery_steps;  // the climb held
         steps_since_climb_ = -1;
@@ -398,12 +399,13 @@ void GeneralizedAlphaStepper::step(double t_limit) {
       const std::string where = worst < 0 ? std::string("-") : problem_.describe_row(worst);
       throw GeneralizedAlphaFailure(
           fmt::format("generalized-α: Newton failed at t = {:.9g} with h = {:.3e} ({}); last "
-                      "weighted increment norm {:.3e}, largest at {}",
+                      "weighted increment norm {:.3e}, largest at {}{}{}",
                       t_, h,
                       adaptive()
                           ? std::string("h_min reached")
                           : fmt::format("after {} step halvings", options_.max_step_halvings),
-                      norm, where),
+                      norm, where,
+                      unevaluable_.empty() ? "" : "; an iterate was not evaluable: ", unevaluable_),
           t_, h, where);
     }
     if (adaptive()) {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "ancf/core/error.hpp"
 #include "ancf/solvers/generalized_alpha.hpp"
@@ -104,18 +105,27 @@ GeneralizedAlphaStepper::Outcome GeneralizedAlphaStepper::newton(double t1, doub
     ++stats_.damped_iterations;
   };
   for (int left = options_.max_iterations; left > 0; --left) {
-    problem_.residual(t1, as_span(q1_), as_span(v1_), as_span(acc1_), as_span(lambda1_),
-                      as_span(residual_));
+    // An iterate the problem cannot evaluate (std::domain_error: e.g. a rod tangent turned
+    // against its committed frame by an overshooting correction) is treated as one with a
+    // non-finite residual: damped back along Δ_k, or the attempt fails and h is reduced.
+    bool evaluable = true;
+    try {
+      problem_.residual(t1, as_span(q1_), as_span(v1_), as_span(acc1_), as_span(lambda1_),
+                        as_span(residual_));
+      if (index2 && m_ > 0)
+        problem_.velocity_constraint(t1, as_span(q1_), as_span(v1_), as_span(velocity_residual_));
+    } catch (const std::domain_error& e) {
+      unevaluable_ = e.what();
+      evaluable = false;
+    }
     ++stats_.residual_evaluations;
-    if (!residual_.allFinite()) {
+    if (!evaluable || !residual_.allFinite()) {
       if (may_damp && fresh && k >= 1 && damping_halvings < options_.max_damping_halvings) {
         damp();
         continue;
       }
       return fresh ? Outcome::failed : Outcome::diverged_stale;
     }
-    if (index2 && m_ > 0)
-      problem_.velocity_constraint(t1, as_span(q1_), as_span(v1_), as_span(velocity_residual_));
     // A contact that became active (or inactive) since the chord matrix was built changes the
     // stiffness by the penalty k: rebuild now rather than let the old matrix fail first.
     if (options_.refresh_on_active_set_change && !full && !matrix_stale_ &&
@@ -127,6 +137,9 @@ GeneralizedAlphaStepper::Outcome GeneralizedAlphaStepper::newton(double t1, doub
       try {
         refresh_matrix(t1, h);
       } catch (const SolverError&) {
+        return Outcome::failed;
+      } catch (const std::domain_error& e) {
+        unevaluable_ = e.what();
         return Outcome::failed;
       }
       fresh = true;
@@ -153,7 +166,12 @@ GeneralizedAlphaStepper::Outcome GeneralizedAlphaStepper::newton(double t1, doub
     if (index2 && m_ > 0) {
       // Position constraint through μ: q ← q + M⁻¹Φ_qᵀμ with Φ_q M⁻¹Φ_qᵀμ = −Φ (block
       // Gauss–Seidel on the GGL system: the μ correction hardly changes the dynamic residual).
-      problem_.constraints(t1, as_span(q1_), as_span(phi_));
+      try {
+        problem_.constraints(t1, as_span(q1_), as_span(phi_));
+      } catch (const std::domain_error& e) {
+        unevaluable_ = e.what();
+        return fresh ? Outcome::failed : Outcome::diverged_stale;
+      }
       residual_.head(n_).setZero();  // residual_ reused as the projection right-hand side
       residual_.tail(m_) = -phi_;
       projector_.solve(as_span(residual_));

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <numeric>
+#include <stdexcept>
 #include <vector>
 
 #include "ancf/core/error.hpp"
@@ -49,10 +50,17 @@ int StaticSolver::newton(VecX& y, double s) {
   const Index n = problem_.coordinate_count();
   const SparsityPattern& pattern = problem_.jacobian_pattern();
   for (int it = 1; it <= options_.max_iterations; ++it) {
-    problem_.residual(as_span(y), s, as_span(residual_));
+    try {
+      problem_.residual(as_span(y), s, as_span(residual_));
+      if (residual_.allFinite()) problem_.jacobian(as_span(y), s, as_span(values_));
+    } catch (const std::domain_error& e) {
+      // StaticProblem's contract: the iterate is not evaluable (e.g. a rod tangent turned
+      // against its committed frame by an overshooting Newton step). A failed iteration: the
+      // load increment is cut, as for a non-finite residual.
+      throw SolverError(fmt::format("static Newton: {} at iteration {}", e.what(), it));
+    }
     if (!residual_.allFinite())
       throw SolverError("static Newton: non-finite residual, " + worst_residual(s));
-    problem_.jacobian(as_span(y), s, as_span(values_));
     try {
       klu_.factor(as_span(values_));
     } catch (const SolverError& e) {
@@ -123,7 +131,9 @@ StaticSolverStatistics StaticSolver::solve(VecX& y) {
   int cuts_left = options_.max_step_cuts;
   VecX y_converged = y;
   while (s < 1.0) {
-    const double s_next = std::min(1.0, s + ds);
+    // The last increment ends at 1 exactly: equal increments summed in floating point fall short
+    // of 1 by round-off (ten of 0.1 give 1 − 1.1e-16), which would add an empty increment.
+    const double s_next = s + ds >= 1.0 - 1e-12 ? 1.0 : s + ds;
     try {
       newton(y, s_next);
     } catch (const SingularStaticProblem& e) {

@@ -55,6 +55,10 @@ class SecondOrderProblem {
   }
 
   /// r (n + m) = [M a + F(q, v, t) − Q(q, v, t) + Φ_qᵀλ; Φ(q, t)]. q, v, a: n; λ: m.
+  /// May throw std::domain_error: the state is not evaluable here (e.g. a rod tangent turned
+  /// against its committed frame); generalized-α takes the iterate as one with a non-finite
+  /// residual and retries with a smaller step. Anything else is fatal. The same holds for
+  /// iteration_matrix(), constraints() and velocity_constraint().
   virtual void residual(double t, std::span<const double> q, std::span<const double> v,
                         std::span<const double> a, std::span<const double> lambda,
                         std::span<double> r) = 0;

@@ -23,10 +23,12 @@ class StaticProblem {
   /// Index range [0, n_coordinates) are coordinates; the rest are multipliers.
   [[nodiscard]] virtual Index coordinate_count() const = 0;
 
-  /// R(y, s) into `residual` (size()).
+  /// R(y, s) into `residual` (size()). May throw std::domain_error: y is not evaluable (the
+  /// solver takes it as a failed Newton iteration and cuts the load increment, as for a
+  /// non-finite residual); anything else is fatal.
   virtual void residual(std::span<const double> y, double load_factor,
                         std::span<double> residual) = 0;
-  /// ∂R/∂y values (one per pattern non-zero) into `values`.
+  /// ∂R/∂y values (one per pattern non-zero) into `values`. May throw as residual().
   virtual void jacobian(std::span<const double> y, double load_factor,
                         std::span<double> values) = 0;
   /// Called with each accepted (converged) state of a load step, before the next load step: an

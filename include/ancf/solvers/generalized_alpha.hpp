@@ -337,6 +337,9 @@ class GeneralizedAlphaStepper {
   long pattern_revision_ = 0;                // changes of problem.iteration_pattern() seen so far
   long klu_revision_ = 0, projector_revision_ = 0;  // revision each solver was analysed for
   GeneralizedAlphaStatistics stats_;
+  // What the problem said of the last iterate it could not evaluate in the current step
+  // (std::domain_error, SecondOrderProblem's contract), for the failure report.
+  std::string unevaluable_;
 };
 
 }  // namespace ancf
