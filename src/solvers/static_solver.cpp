@@ -92,14 +92,15 @@ int StaticSolver::newton(VecX& y, double s) {
     ++iterations_;
     if (check && residual_.allFinite()) {
       const VecX scaled_step = residual_.cwiseQuotient(scales.column_scale);
-      const double stiffness = scaled_residual.norm() / scaled_step.norm();
+      // stableNorm: loads near the overflow threshold must not turn the ratio into 0 or NaN.
+      const double stiffness = scaled_residual.stableNorm() / scaled_step.stableNorm();
       if (stiffness < options_.singular_tolerance)
         throw SingularStaticProblem(fmt::format(
             "no equilibrium near the state the increment to load factor {:.6g} starts from: its "
             "tangent has no stiffness against the load (residual / Newton step {:.2e} in "
             "equilibrated units, below {:.1e}); the step would move mostly {}",
             s, stiffness, options_.singular_tolerance,
-            describe_direction(scaled_step / scaled_step.norm())));
+            describe_direction(scaled_step / scaled_step.stableNorm())));
     }
     if (!residual_.allFinite())
       throw SolverError(fmt::format("static Newton: non-finite increment at iteration {}", it));
