@@ -23,6 +23,7 @@
 #include <cmath>
 #include <functional>
 #include <numbers>
+#include <stdexcept>
 #include <vector>
 
 #include "ancf/core/error.hpp"
@@ -523,6 +524,75 @@ TEST(GeneralizedAlpha, StepHalvingAndRecovery) {
     EXPECT_NE(std::string(err.what()).find("Newton failed at t ="), std::string::npos)
         << err.what();
     std::printf("reported: %s\n", err.what());
+  }
+}
+
+/// A unit oscillator q'' + q = 0 that cannot be evaluated beyond t_wall (std::domain_error, as a
+/// rod element past its singular configuration): every step that crosses t_wall fails, every one
+/// short of it is accepted.
+class OscillatorWithATimeWall final : public SecondOrderProblem {
+ public:
+  explicit OscillatorWithATimeWall(double t_wall) : t_wall_(t_wall), pattern_(1), q0_(1), v0_(1) {
+    pattern_.add(0, 0);
+    pattern_.freeze();
+    q0_ << 1.0;
+    v0_ << 0.0;
+  }
+  Index coordinate_count() const override { return 1; }
+  Index multiplier_count() const override { return 0; }
+  const SparsityPattern& iteration_pattern() const override { return pattern_; }
+  void residual(double t, std::span<const double> q, std::span<const double>,
+                std::span<const double> a, std::span<const double>, std::span<double> r) override {
+    if (t > t_wall_) throw std::domain_error("oscillator: beyond the wall");
+    r[0] = a[0] + q[0];
+  }
+  void iteration_matrix(double, std::span<const double>, std::span<const double>,
+                        std::span<const double>, std::span<const double>, const MatrixWeights& w,
+                        std::span<double> values) override {
+    values[0] = w.w_a + w.w_q;
+  }
+  void constraints(double, std::span<const double>, std::span<double>) override {}
+  void velocity_constraint(double, std::span<const double>, std::span<const double>,
+                           std::span<double>) override {}
+  void acceleration_rhs(double, std::span<const double>, std::span<const double>,
+                        std::span<double>) override {}
+  double energy(double, std::span<const double> q, std::span<const double> v) override {
+    return 0.5 * (v[0] * v[0] + q[0] * q[0]);
+  }
+  std::string describe_row(Index) const override { return "oscillator"; }
+  const VecX& initial_coordinates() const override { return q0_; }
+  const VecX& initial_velocities() const override { return v0_; }
+
+ private:
+  double t_wall_;
+  SparsityPattern pattern_;
+  VecX q0_, v0_;
+};
+
+// Fixed stepping near a time the problem cannot be evaluated beyond: each failure halves h, each
+// accepted step short of the wall resets the count of halvings in a row, so the count alone let h
+// ratchet down without bound (a violent rod scene reached h = 1e-110 s, where t + h == t). The
+// ladder has a floor, step·2^−max_step_halvings: the run ends there with a report that names the
+// floor and the problem's message, at the last accepted time, within the floor of the wall.
+TEST(GeneralizedAlpha, FixedSteppingStopsAtTheHalvingFloor) {
+  const double t_wall = 0.1037;
+  OscillatorWithATimeWall problem(t_wall);
+  GeneralizedAlphaOptions o = tight(0.01, 0.8);
+  GeneralizedAlphaStepper stepper(problem, o);
+  stepper.initialize(0.0);
+  const double floor = std::ldexp(o.step_size, -o.max_step_halvings);
+  try {
+    stepper.advance_to(1.0);
+    FAIL() << "no failure reported";
+  } catch (const GeneralizedAlphaFailure& err) {
+    const std::string what = err.what();
+    std::printf("reported after %ld steps, %ld halvings: %s\n", stepper.statistics().steps,
+                stepper.statistics().step_halvings, what.c_str());
+    EXPECT_NE(what.find("floor"), std::string::npos) << what;
+    EXPECT_NE(what.find("beyond the wall"), std::string::npos) << what;
+    EXPECT_LE(err.time(), t_wall);
+    EXPECT_GT(err.time(), t_wall - 2.0 * floor);
+    EXPECT_GE(err.step_size(), floor * (1.0 - 1e-12));
   }
 }
 

@@ -391,8 +391,14 @@ void GeneralizedAlphaStepper::step(double t_limit) {
       retried_stale = true;  // same h with a fresh matrix before reducing it
       continue;
     }
+    // Fixed stepping: at most max_step_halvings halvings in a row, and the step ladder h_ never
+    // below step_size·2^−max_step_halvings. Accepted steps between failures reset the count, so
+    // without the floor h could ratchet down without bound (a violent scene reached 1e-110 s,
+    // where t + h == t and the run makes no progress). The capture scenes go down to 2^−8.
+    const double h_floor = std::ldexp(options_.step_size, -options_.max_step_halvings);
+    const bool in_a_row = !adaptive() && ++halvings_in_a_row_ > options_.max_step_halvings;
     const bool exhausted =
-        adaptive() ? h <= h_min * (1.0 + 1e-12) : ++halvings_in_a_row_ > options_.max_step_halvings;
+        adaptive() ? h <= h_min * (1.0 + 1e-12) : in_a_row || h_ <= h_floor * (1.0 + 1e-12);
     if (exhausted) {
       Index worst = -1;
       const double norm = increment_norm(&worst);
@@ -401,9 +407,10 @@ void GeneralizedAlphaStepper::step(double t_limit) {
           fmt::format("generalized-α: Newton failed at t = {:.9g} with h = {:.3e} ({}); last "
                       "weighted increment norm {:.3e}, largest at {}{}{}",
                       t_, h,
-                      adaptive()
-                          ? std::string("h_min reached")
-                          : fmt::format("after {} step halvings", options_.max_step_halvings),
+                      adaptive() ? std::string("h_min reached")
+                      : in_a_row ? fmt::format("after {} step halvings", options_.max_step_halvings)
+                                 : fmt::format("h at its floor step·2^−{} = {:.3e}",
+                                               options_.max_step_halvings, h_floor),
                       norm, where,
                       unevaluable_.empty() ? "" : "; an iterate was not evaluable: ", unevaluable_),
           t_, h, where);

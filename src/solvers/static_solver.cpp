@@ -49,16 +49,20 @@ std::string StaticSolver::describe_direction(const VecX& direction) const {
 int StaticSolver::newton(VecX& y, double s) {
   const Index n = problem_.coordinate_count();
   const SparsityPattern& pattern = problem_.jacobian_pattern();
-  for (int it = 1; it <= options_.max_iterations; ++it) {
+  // StaticProblem's contract: std::domain_error means the iterate is not evaluable (e.g. a rod
+  // tangent turned against its committed frame by an overshooting Newton step). A failed
+  // iteration: the load increment is cut, as for a non-finite residual.
+  auto evaluate = [&](int it, bool with_jacobian) {
     try {
       problem_.residual(as_span(y), s, as_span(residual_));
-      if (residual_.allFinite()) problem_.jacobian(as_span(y), s, as_span(values_));
+      if (with_jacobian && residual_.allFinite())
+        problem_.jacobian(as_span(y), s, as_span(values_));
     } catch (const std::domain_error& e) {
-      // StaticProblem's contract: the iterate is not evaluable (e.g. a rod tangent turned
-      // against its committed frame by an overshooting Newton step). A failed iteration: the
-      // load increment is cut, as for a non-finite residual.
       throw SolverError(fmt::format("static Newton: {} at iteration {}", e.what(), it));
     }
+  };
+  for (int it = 1; it <= options_.max_iterations; ++it) {
+    evaluate(it, true);
     if (!residual_.allFinite())
       throw SolverError("static Newton: non-finite residual, " + worst_residual(s));
     try {
@@ -118,7 +122,7 @@ int StaticSolver::newton(VecX& y, double s) {
       return it;
     }
   }
-  problem_.residual(as_span(y), s, as_span(residual_));
+  evaluate(options_.max_iterations + 1, false);
   throw SolverError(fmt::format("static Newton did not converge in {} iterations; {}",
                                 options_.max_iterations, worst_residual(s)));
 }

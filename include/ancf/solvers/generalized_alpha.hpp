@@ -143,7 +143,8 @@ struct GeneralizedAlphaOptions {
   KluRefactor klu_refactor = KluRefactor::runs;
 
   /// On Newton failure (with a fresh matrix) the step is halved from the last accepted state, at
-  /// most this many times in a row; after recovery_steps accepted steps at a reduced size it is
+  /// most this many times in a row and never below step_size·2^−max_step_halvings (a failure at
+  /// that size ends the run); after recovery_steps accepted steps at a reduced size it is
   /// doubled again (towards step_size). A halving restarts the scheme, a climb rescales it
   /// (step_change = automatic; see change_step_size()).
   int max_step_halvings = 12;
@@ -232,7 +233,7 @@ class GeneralizedAlphaStepper {
   /// One step of the current size, or shorter if `t_limit` is closer (within 1e-8 h of one step,
   /// t_limit is hit with the current h).
   ///  * fixed stepping: the nominal h unless a Newton failure halved it. Throws SolverError after
-  ///    max_step_halvings failures in a row.
+  ///    max_step_halvings failures in a row, or on a failure at step_size·2^−max_step_halvings.
   ///  * error-controlled: the step is accepted when the weighted RMS norm of the local error
   ///    estimate C h²(a_{n+1} − a_n) (options.controller tolerances) is ≤ 1, and the controller
   ///    proposes the next h; a rejected step or a Newton failure is retried from the accepted state
