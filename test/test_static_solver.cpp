@@ -1,11 +1,14 @@
 // The static solver on problems it must refuse (issue 17 item 5): a singular tangent whose load
 // drives the zero-stiffness motion fails at once with the load factor and the unknowns of that
 // motion named, never "succeeds" on a flipped shape; a singular but consistent problem solves
-// and says that its equilibrium is not isolated; a non-converging one fails with the load factor.
+// and says that its equilibrium is not isolated; a non-converging one fails with the load factor;
+// an iterate the problem cannot evaluate is a failed iteration (the increment is cut).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <stdexcept>
 #include <string>
 
 #include "ancf/solvers/static_solver.hpp"
@@ -138,6 +141,58 @@ TEST(StaticSolverNonConverging, FailsWithTheLoadFactor) {
         << what;
     EXPECT_NE(what.find("did not converge in 3 iterations"), std::string::npos) << what;
   }
+}
+
+/// R(y, s) = atan(y) − s·atan(30), not evaluable beyond y = 5 (std::domain_error, as a rod past
+/// its singular configuration): Newton from 0 climbs 1.54, 3.37, 6.51, … at s = 1.
+class AtanBeyondAWall final : public StaticProblem {
+ public:
+  AtanBeyondAWall() : pattern_(1) {
+    pattern_.add(0, 0);
+    pattern_.freeze();
+  }
+  Index size() const override { return 1; }
+  const SparsityPattern& jacobian_pattern() const override { return pattern_; }
+  Index coordinate_count() const override { return 1; }
+  void residual(std::span<const double> y, double s, std::span<double> r) override {
+    if (y[0] > 5.0) throw std::domain_error("atan problem: not evaluable beyond y = 5");
+    r[0] = std::atan(y[0]) - s * std::atan(30.0);
+  }
+  void jacobian(std::span<const double> y, double, std::span<double> values) override {
+    values[0] = 1.0 / (1.0 + y[0] * y[0]);
+  }
+  std::string describe_row(Index) const override { return "y"; }
+
+ private:
+  SparsityPattern pattern_;
+};
+
+// StaticProblem's contract: an iterate the problem cannot evaluate is a failed iteration, and the
+// increment is cut — also when it is the last iterate of an increment that ran out of iterations
+// (evaluated for the report: 6.51 after 3 iterations here). Before, that exception left the
+// solver (`ancf static` aborted without outputs). With no cuts allowed the failure is reported at
+// once, with the problem's message, y at the last converged state.
+TEST(StaticSolverNonConverging, UnevaluableIteratesAreFailedIterations) {
+  AtanBeyondAWall problem;
+  StaticSolver solver(problem, {.max_iterations = 3, .max_step_cuts = 0});
+  VecX y = VecX::Zero(1);
+  try {
+    (void)solver.solve(y);
+    ADD_FAILURE() << "converged";
+  } catch (const SolverError& e) {
+    const std::string what = e.what();
+    std::printf("reported: %s; y = %g\n", what.c_str(), y[0]);
+    EXPECT_NE(what.find("after 0 step cuts"), std::string::npos) << what;
+    EXPECT_NE(what.find("not evaluable beyond y = 5 at iteration 4"), std::string::npos) << what;
+    EXPECT_EQ(y[0], 0.0);  // the last converged state: the start
+  }
+  // With cuts the increments below the wall converge; the solution (30) stays out of reach.
+  StaticSolver cutting(problem, {.max_iterations = 30});
+  y.setZero();
+  EXPECT_THROW((void)cutting.solve(y), SolverError);
+  std::printf("with cuts: stopped at y = %.6f (tan of the last load factor times atan 30)\n", y[0]);
+  EXPECT_GT(y[0], 1.0);
+  EXPECT_LE(y[0], 5.0);
 }
 
 }  // namespace
