@@ -249,6 +249,7 @@ void read_cables(TableReader& root, SceneBuild& b) {
       b.cable_initial.push_back(initial);
       b.cable_radius.push_back(section.radius);
       b.cable_names.push_back(name);
+      b.cable_origins[name] = {t.path(), t.line()};
       b.cable_is_rod.push_back(0);
     });
   }

@@ -11,8 +11,10 @@ namespace ancf {
 namespace {
 
 /// The constraint a redundancy report names first ("constraint 'NAME' row …"), or "".
-std::string first_named_constraint(const std::string& message) {
-  const std::string tag = "constraint '";
+/// The name after the first occurrence of `kind '` in a builder message ("constraint 'pin'",
+/// "rod 'rope'"), or empty.
+std::string first_named(const std::string& message, const std::string& kind) {
+  const std::string tag = kind + " '";
   const auto a = message.find(tag);
   if (a == std::string::npos) return {};
   const auto b = message.find('\'', a + tag.size());
@@ -55,11 +57,14 @@ Scene build_scene(const toml::table& root_table, const std::string& path,
   try {
     scene.model = b.builder.finalize();
   } catch (const ModelError& e) {
-    // Point at the declaration of the first constraint the builder names (redundancy report).
-    const std::string name = first_named_constraint(e.what());
-    const auto it = b.origins.find(name);
-    if (it != b.origins.end())
+    // Point at the declaration of the first constraint the builder names (redundancy report),
+    // else at the rod or cable it names (a reference the element cannot be built on).
+    if (const auto it = b.origins.find(first_named(e.what(), "constraint")); it != b.origins.end())
       throw SceneError(path, it->second.line, 0, it->second.path, e.what());
+    for (const char* kind : {"rod", "cable"})
+      if (const auto it = b.cable_origins.find(first_named(e.what(), kind));
+          it != b.cable_origins.end())
+        throw SceneError(path, it->second.line, 0, it->second.path, e.what());
     throw SceneError(path, 0, 0, "", e.what());
   }
   // Reaction probes: the constraints of their joint (NAME, and NAME.slope, NAME.twist where they

@@ -31,6 +31,9 @@ struct SceneBuild {
     int line = 0;
   };
   std::map<std::string, Origin> origins;
+  /// Where each [[cable]] / [[rod]] was declared, for errors the builder finds at finalize that
+  /// name the cable ("rod 'NAME' element j: …").
+  std::map<std::string, Origin> cable_origins;
   std::map<std::string, std::string> revolute_joints;  // name → path (drives refer to them)
   /// What each [[joint]] acts on (its `at` node or its `body`): the entity of its reaction probe.
   struct JointTarget {

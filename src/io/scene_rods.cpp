@@ -149,6 +149,7 @@ void read_rods(TableReader& root, SceneBuild& b) {
       b.cable_initial.push_back(initial);
       b.cable_radius.push_back(section.cable.radius);
       b.cable_names.push_back(name);
+      b.cable_origins[name] = {t.path(), t.line()};
       b.cable_is_rod.push_back(1);
     });
   }

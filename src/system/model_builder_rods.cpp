@@ -1,6 +1,7 @@
 // The rod parts of ModelBuilder: adding a Kirchhoff rod, its end moments and twist conditions,
 // and its per-element data at finalize() (kirchhoff_rod_element.hpp, docs/rod.md).
 #include <cmath>
+#include <stdexcept>
 #include <string>
 
 #include "ancf/core/error.hpp"
@@ -159,6 +160,13 @@ RodData ModelBuilder::make_rod_data(const PendingCable& pc, const CableData& c, 
           RodElementReference::from_reference(pc.reference.element_coordinates(j), l, h));
     } catch (const ModelError& e) {
       throw ModelError("rod '" + c.name + "' element " + std::to_string(j) + ": " + e.what());
+    } catch (const std::domain_error& e) {
+      // The smallest rotation from the node frame is undefined where the reference tangent
+      // points against it: the element's cubic turns over (e.g. an arc of 2π per element, whose
+      // end points coincide, or any reference that turns by about π or more in one element).
+      throw ModelError("rod '" + c.name + "' element " + std::to_string(j) +
+                       ": its reference centreline turns over within the element (" + e.what() +
+                       "); use more elements, each turning well below π");
     }
     d.reference_omega.push_back(h.omega);
     d.twist_mass.push_back(rod_twist_mass(pc.rod->polar_inertia, l));
