@@ -11,11 +11,12 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <stdexcept>
 
+#include "ancf/io/run_outputs.hpp"
 #include "ancf/io/vtk_writer.hpp"
 #include "ancf/system/modal_analysis.hpp"
 #include "commands.hpp"
-#include "ancf/io/run_outputs.hpp"
 #include "scene_statics.hpp"
 
 namespace ancf::app {
@@ -94,6 +95,10 @@ int modes_command(const ModesOptions& options) {
       modes = natural_modes_at_initial_equilibrium(scene.model, modal);
     }
   } catch (const SolverError& e) {
+    status = "failed", message = e.what();
+  } catch (const std::domain_error& e) {
+    // The model cannot be evaluated at the state (e.g. a rod tangent turned over against its
+    // frame): reported like a solver failure, with run.json written.
     status = "failed", message = e.what();
   } catch (const std::invalid_argument& e) {
     // Not an equilibrium, or a component that is coupled to the others.

@@ -18,7 +18,7 @@
 namespace ancf::rod_detail {
 
 // 1 + (source tangent)·(target tangent) below this: the smallest rotation is (nearly) undefined.
-inline constexpr double kSrDenominatorMin = 1e-8;
+inline constexpr double kSrDenominatorMin = kRodSmallestRotationDenominatorMin;
 
 // A 3-vector of a scalar type T (double or a jet); only the operations the strains need.
 template <class T>

@@ -7,6 +7,7 @@
 #include "ancf/core/error.hpp"
 #include "ancf/physics/hermite_shape.hpp"
 #include "ancf/physics/joints.hpp"
+#include "ancf/physics/kirchhoff_rod_element.hpp"
 
 namespace ancf {
 namespace {
@@ -124,6 +125,19 @@ void ModelBuilder::set_initial_configuration(Index cable, const CableGeometry& c
                      std::to_string(current.node_count()) + " nodes, reference has " +
                      std::to_string(c.reference.node_count()));
   validate_geometry(c.name, current);
+  if (c.rod) {
+    // The node frames start as the reference triads and follow the tangent by the smallest
+    // rotation, which is undefined for a tangent turned by π (kirchhoff_rod_element.hpp).
+    for (Index k = 0; k < current.node_count(); ++k) {
+      const Vec3 t = current.nodes[k].tail<3>().normalized();
+      if (!(1.0 + t.dot(c.frames[k].col(0)) > kRodSmallestRotationDenominatorMin))
+        throw ModelError("rod '" + c.name + "' node " + std::to_string(k) +
+                         ": the initial tangent points against the reference tangent (turned by "
+                         "π): the material frame cannot be carried over by the smallest rotation; "
+                         "start from a configuration whose tangents turn by less than π from the "
+                         "reference's");
+    }
+  }
   c.initial = current;
   if (velocities) {
     if (velocities->size() != current.nodes.size())

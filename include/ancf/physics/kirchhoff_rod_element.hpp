@@ -38,6 +38,11 @@ using Mat15 = Eigen::Matrix<double, kRodElementCoordinates, kRodElementCoordinat
 /// Gauss points per rod element (4, as 4C's beam3k: exact for the linearised straight element).
 inline constexpr int kRodGaussPoints = 4;
 
+/// The smallest rotation SR(source → g) is (nearly) undefined once 1 + (source tangent)·g is at
+/// or below this: the element throws std::domain_error there, and the model builder refuses an
+/// initial configuration whose node tangent points that far against the reference frame's.
+inline constexpr double kRodSmallestRotationDenominatorMin = 1e-8;
+
 /// Where the axial strain of the energy ½EA ε² is taken.
 enum class RodAxialStrain {
   /// ε = |r_x|/J₀ − 1 at each Gauss point. Locks in bending of slender curved elements
