@@ -37,6 +37,7 @@
 #include "ancf/system/model_builder.hpp"
 #include "ancf/system/multibody_problem.hpp"
 #include "pendulum_reference.hpp"
+#include "unconstrained_problem.hpp"
 
 namespace ancf {
 namespace {
@@ -530,7 +531,7 @@ TEST(GeneralizedAlpha, StepHalvingAndRecovery) {
 /// A unit oscillator q'' + q = 0 that cannot be evaluated beyond t_wall (std::domain_error, as a
 /// rod element past its singular configuration): every step that crosses t_wall fails, every one
 /// short of it is accepted.
-class OscillatorWithATimeWall final : public SecondOrderProblem {
+class OscillatorWithATimeWall final : public UnconstrainedProblem {
  public:
   explicit OscillatorWithATimeWall(double t_wall) : t_wall_(t_wall), pattern_(1), q0_(1), v0_(1) {
     pattern_.add(0, 0);
@@ -539,7 +540,6 @@ class OscillatorWithATimeWall final : public SecondOrderProblem {
     v0_ << 0.0;
   }
   Index coordinate_count() const override { return 1; }
-  Index multiplier_count() const override { return 0; }
   const SparsityPattern& iteration_pattern() const override { return pattern_; }
   void residual(double t, std::span<const double> q, std::span<const double>,
                 std::span<const double> a, std::span<const double>, std::span<double> r) override {
@@ -551,11 +551,6 @@ class OscillatorWithATimeWall final : public SecondOrderProblem {
                         std::span<double> values) override {
     values[0] = w.w_a + w.w_q;
   }
-  void constraints(double, std::span<const double>, std::span<double>) override {}
-  void velocity_constraint(double, std::span<const double>, std::span<const double>,
-                           std::span<double>) override {}
-  void acceleration_rhs(double, std::span<const double>, std::span<const double>,
-                        std::span<double>) override {}
   double energy(double, std::span<const double> q, std::span<const double> v) override {
     return 0.5 * (v[0] * v[0] + q[0] * q[0]);
   }

@@ -44,15 +44,20 @@ RodSection damped_section() {
   return r;
 }
 
+// Clamp node 0 of a straight rod along x from the origin: position, slope and twist.
+void clamp_along_x(ModelBuilder& b, Index rod) {
+  b.pin("clamp.r", {rod, 0}, Vec3::Zero());
+  b.align_slope("clamp.t", {rod, 0}, Vec3::UnitX());
+  b.fix_twist("clamp.twist", {rod, 0});
+}
+
 Model whirled_rod() {
   const CableGeometry g = straight_cable(Vec3::Zero(), Vec3(1, 0, 0), 6);
   const RodSection r = damped_section();
   ModelBuilder b;
   const Index rod =
       b.add_rod("rod", g, CableSection{}, r, rod_frames_with_normal(g, Vec3::UnitY()));
-  b.pin("clamp.r", {rod, 0}, Vec3::Zero());
-  b.align_slope("clamp.t", {rod, 0}, Vec3::UnitX());
-  b.fix_twist("clamp.twist", {rod, 0});
+  clamp_along_x(b, rod);
   b.add_node_moment({rod, -1}, Vec3(1.0, 0.0, 1.0));
   return b.finalize();
 }
@@ -264,10 +269,6 @@ TEST(KirchhoffRodDynamics, FrameUpdateChangesTheSlopeForcesByTheTwistForce) {
   EXPECT_GT(largest_change, 1e-2 * largest_twist_force);
 }
 
-// IDA's position-equivalent slope and twist tolerances ([integrator.ida] slope_scale and
-// twist_scale, GglScales): a twist error counts as the motion r_g δα it gives the section's
-// points. The integrators still agree as above (the tip position to generalized-α's error, d₂ to
-// that plus rtol × L/r_g), and IDA takes no more steps than with unit scales.
 // A step whose Newton iterate turns a node's tangent over (the element throws std::domain_error:
 // the smallest rotation from the committed frame is undefined) is a failed attempt, and the step
 // is halved (SecondOrderProblem's contract, as IDA's DaeProblem has it). A straight cantilever
@@ -284,9 +285,7 @@ TEST(KirchhoffRodDynamics, StepWhoseIterateTurnsATangentOverIsHalved) {
   ModelBuilder b;
   const Index rod =
       b.add_rod("rod", g, CableSection{}, r, rod_frames_with_normal(g, Vec3::UnitY()));
-  b.pin("clamp.r", {rod, 0}, Vec3::Zero());
-  b.align_slope("clamp.t", {rod, 0}, Vec3::UnitX());
-  b.fix_twist("clamp.twist", {rod, 0});
+  clamp_along_x(b, rod);
   b.add_node_moment({rod, -1}, Vec3(0.0, 0.0, 2.0 * std::numbers::pi));
   const Model m = b.finalize();
   MultibodyProblem problem(m);
@@ -303,6 +302,10 @@ TEST(KirchhoffRodDynamics, StepWhoseIterateTurnsATangentOverIsHalved) {
   EXPECT_TRUE(stepper.positions().allFinite());
 }
 
+// IDA's position-equivalent slope and twist tolerances ([integrator.ida] slope_scale and
+// twist_scale, GglScales): a twist error counts as the motion r_g δα it gives the section's
+// points. The integrators still agree as above (the tip position to generalized-α's error, d₂ to
+// that plus rtol × L/r_g), and IDA takes no more steps than with unit scales.
 TEST(KirchhoffRodDynamics, PositionEquivalentTolerancesKeepTheAgreement) {
   const GglScales scaled{.slope = SlopeScale::position_equivalent,
                          .twist = TwistScale::position_equivalent};

@@ -31,6 +31,7 @@
 #include "ancf/solvers/step_controller.hpp"
 #include "ancf/system/multibody_problem.hpp"
 #include "pendulum_reference.hpp"
+#include "unconstrained_problem.hpp"
 
 namespace ancf {
 namespace {
@@ -267,7 +268,7 @@ TEST(VariableStep, StepChangeVariantsKeepTheirOrder) {
 /// stiff one (ω_1 = 2π, ω_2 = 1e5 rad/s), both excited, the stiff one at an amplitude (1e-7 m)
 /// below the absolute tolerance: unresolved and not of interest, as the axial and contact modes of
 /// the capture ropes.
-class TwoOscillators final : public SecondOrderProblem {
+class TwoOscillators final : public UnconstrainedProblem {
  public:
   TwoOscillators() : pattern_(2), q0_(2), v0_(2) {
     pattern_.add(0, 0);
@@ -277,7 +278,6 @@ class TwoOscillators final : public SecondOrderProblem {
     v0_.setZero();
   }
   Index coordinate_count() const override { return 2; }
-  Index multiplier_count() const override { return 0; }
   const SparsityPattern& iteration_pattern() const override { return pattern_; }
   void residual(double, std::span<const double> q, std::span<const double>,
                 std::span<const double> a, std::span<const double>, std::span<double> r) override {
@@ -288,11 +288,6 @@ class TwoOscillators final : public SecondOrderProblem {
                         std::span<double> values) override {
     for (int i = 0; i < 2; ++i) values[i] = w.w_a + w.w_q * omega2_[i];
   }
-  void constraints(double, std::span<const double>, std::span<double>) override {}
-  void velocity_constraint(double, std::span<const double>, std::span<const double>,
-                           std::span<double>) override {}
-  void acceleration_rhs(double, std::span<const double>, std::span<const double>,
-                        std::span<double>) override {}
   double energy(double, std::span<const double> q, std::span<const double> v) override {
     return 0.5 * (v[0] * v[0] + v[1] * v[1] + omega2_[0] * q[0] * q[0] + omega2_[1] * q[1] * q[1]);
   }
