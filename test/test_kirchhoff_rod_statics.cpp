@@ -63,18 +63,24 @@ Vec3 tip(const Model& m, const VecX& y) {
   return y.segment<3>(m.node_coordinate(0, -1));
 }
 
+// A straight cantilever along x (n elements, clamped with its twist at the origin) under the dead
+// end moment M = θ EI/L about e_z, which rolls it up by the angle θ.
+Model rolled_up_cantilever(Index n, double length, const RodSection& section, double theta) {
+  const CableGeometry g = straight_cable(Vec3::Zero(), Vec3(length, 0, 0), n);
+  ModelBuilder b;
+  const Index rod =
+      b.add_rod("rod", g, CableSection{}, section, rod_frames_with_normal(g, Vec3::UnitY()));
+  clamp(b, rod, g);
+  b.add_node_moment({rod, -1}, Vec3(0, 0, theta * section.bending_stiffness_3 / length));
+  return b.finalize();
+}
+
 // u = L(sin θ/θ − 1), v = L(1 − cos θ)/θ for θ = ML/EI about e_z (Euler).
 TEST(KirchhoffRodStatics, RollUpByEndMomentConvergesAtFourthOrder) {
   const double length = 10.0, ei = 100.0, theta = 1.5 * kPi;
   std::vector<double> h, err;
   for (const Index n : {4, 8, 16}) {
-    const CableGeometry g = straight_cable(Vec3::Zero(), Vec3(length, 0, 0), n);
-    ModelBuilder b;
-    const Index rod = b.add_rod("rod", g, CableSection{}, rod_section(1e6, 80.0, ei),
-                                rod_frames_with_normal(g, Vec3::UnitY()));
-    clamp(b, rod, g);
-    b.add_node_moment({rod, -1}, Vec3(0, 0, theta * ei / length));
-    const Model m = b.finalize();
+    const Model m = rolled_up_cantilever(n, length, rod_section(1e6, 80.0, ei), theta);
     const Solved s = solve(m, 12);
     const Vec3 exact(length * std::sin(theta) / theta, length * (1 - std::cos(theta)) / theta, 0);
     const double e = (tip(m, s.y) - exact).norm();
@@ -309,13 +315,7 @@ TEST(KirchhoffRodStatics, LoadPathIndependence) {
 // 1 − 1.1e-16 used to add an eleventh, empty one).
 TEST(KirchhoffRodStatics, IncrementThatTurnsATangentOverIsCut) {
   const double length = 1.0, ei = 1.0, theta = 2.0 * kPi;
-  const CableGeometry g = straight_cable(Vec3::Zero(), Vec3(length, 0, 0), 16);
-  ModelBuilder b;
-  const Index rod = b.add_rod("rod", g, CableSection{}, rod_section(1e4, 1.0, ei),
-                              rod_frames_with_normal(g, Vec3::UnitY()));
-  clamp(b, rod, g);
-  b.add_node_moment({rod, -1}, Vec3(0, 0, theta * ei / length));
-  const Model m = b.finalize();
+  const Model m = rolled_up_cantilever(16, length, rod_section(1e4, 1.0, ei), theta);
   const Solved two = solve(m, 2), ten = solve(m, 10);
   const Index n = m.coordinate_count();
   const double diff = (two.y.head(n) - ten.y.head(n)).lpNorm<Eigen::Infinity>();
