@@ -10,9 +10,9 @@ namespace ancf {
 
 namespace {
 
-/// The constraint a redundancy report names first ("constraint 'NAME' row …"), or "".
-/// The name after the first occurrence of `kind '` in a builder message ("constraint 'pin'",
-/// "rod 'rope'"), or empty.
+/// The name after the first occurrence of `kind '` in a builder message: the constraint a
+/// redundancy report names first ("constraint 'NAME' row …"), the rod an element error names
+/// ("rod 'NAME' element j: …"); empty if there is none.
 std::string first_named(const std::string& message, const std::string& kind) {
   const std::string tag = kind + " '";
   const auto a = message.find(tag);
