@@ -56,6 +56,9 @@ TEST(MeshGrading, RefinementIsNestedAndEndsAreGraded) {
   EXPECT_NEAR((s[1] - s[0]) / (s[400] - s[399]), 0.1, 0.1 * 0.1);
   EXPECT_THROW((void)node_fractions(4, length, {.end_ratio = 0.0, .end_length = 0.02}), ModelError);
   EXPECT_THROW((void)node_fractions(4, length, {.end_ratio = 0.5, .end_length = 0.0}), ModelError);
+  // ℓ/L below round-off (found by the fuzzer): refused, not returned as NaN fractions.
+  EXPECT_THROW((void)node_fractions(8, 1e150, {.end_ratio = 0.5, .end_length = 1e-300}),
+               ModelError);
 }
 
 // A refinement band inside: nested, element at the band centre band_ratio times the far ones

@@ -105,6 +105,9 @@ int modes_command(const ModesOptions& options) {
     status = "failed", message = e.what();
     if (!options.about_static && message.find("not an equilibrium") != std::string::npos)
       message += "; with loads or gravity use --static (modes about the static equilibrium)";
+  } catch (const std::runtime_error& e) {
+    // The eigen-solver did not converge (natural_modes).
+    status = "failed", message = e.what();
   }
   const Index count =
       status == "completed"
@@ -147,10 +150,12 @@ int modes_command(const ModesOptions& options) {
     fmt::print("{}: {} modes about the {} ({} coordinates, constraint rank {}), in {}\n",
                scene.name, count, options.about_static ? "static equilibrium" : "initial state",
                modes.selected_coordinates, modes.constraint_rank, options.out_dir);
-    fmt::print("  {:>4}  {:>16}  {:>16}\n", "mode", "omega [rad/s]", "f [Hz]");
+    // ω² shown too: a rigid-body mode's ω² is round-off and may be negative, where ω is nan.
+    fmt::print("  {:>4}  {:>18}  {:>16}  {:>16}\n", "mode", "omega^2 [rad2/s2]", "omega [rad/s]",
+               "f [Hz]");
     for (Index i = 0; i < count; ++i)
-      fmt::print("  {:>4}  {:>16.9g}  {:>16.9g}\n", i + 1, modes.omega(i),
-                 modes.omega(i) / (2.0 * std::numbers::pi));
+      fmt::print("  {:>4}  {:>18.9g}  {:>16.9g}  {:>16.9g}\n", i + 1, modes.omega_squared[i],
+                 modes.omega(i), modes.omega(i) / (2.0 * std::numbers::pi));
   }
   return status == "completed" ? 0 : 2;
 }

@@ -2,6 +2,7 @@
 #include <cmath>
 #include <utility>
 
+#include <fmt/format.h>
 #include <Eigen/Geometry>
 
 #include "ancf/io/run_limits.hpp"
@@ -66,6 +67,23 @@ void require_perpendicular(TableReader& g, std::string_view key, const Vec3& a, 
     g.fail(key, std::string("expected a direction perpendicular to ") + other);
 }
 
+/// Numbers near the double range pass the reader (they are finite), but the distances between
+/// them overflow (a norm squares its components), which the generators would turn into a zero
+/// slope or NaN fractions far from this table (found by the fuzzer, 2026-12-06).
+void require_finite_extent(TableReader& g, std::string_view key, const CableGeometry& geo) {
+  for (double l : geo.element_lengths)
+    if (!(std::isfinite(l) && l > 0.0))
+      g.fail(key,
+             "expected a geometry whose element lengths are finite and positive in double "
+             "precision, got " +
+                 fmt::format("{:g}", l) + " m (coordinates or radius too large)");
+  for (const NodeCoordinates& n : geo.nodes)
+    if (!n.allFinite())
+      g.fail(key,
+             "expected a geometry whose node coordinates are finite in double precision "
+             "(coordinates or radius too large)");
+}
+
 }  // namespace
 
 CableGeometry read_geometry(TableReader g, Index elements, GeometryAxis* axis_out,
@@ -77,12 +95,14 @@ CableGeometry read_geometry(TableReader g, Index elements, GeometryAxis* axis_ou
     if (!((b - a).norm() > 0.0))
       g.fail("end", "expected an end point different from start (zero length)");
     geo = straight_cable(a, b, elements, fractions);
+    require_finite_extent(g, "end", geo);
   } else if (kind == "polyline") {
     if (!fractions.empty())
       g.fail("kind",
              "a graded mesh ('grading') needs a straight, helix or arc geometry, not a "
              "polyline (its elements follow the segments)");
     geo = polyline_cable(g, g.vec3_list("points", 2), elements);
+    require_finite_extent(g, "points", geo);
   } else if (kind == "helix") {
     const Vec3 base = g.vec3_or("base", Vec3::Zero());
     const Vec3 axis = g.optional_direction("axis").value_or(Vec3::UnitZ());
@@ -96,6 +116,7 @@ CableGeometry read_geometry(TableReader g, Index elements, GeometryAxis* axis_ou
     if (!(std::hypot(radius * twist, rise) > 0.0))
       g.fail("twist", "expected twist or rise non-zero (zero length)");
     geo = helix_cable(base, axis, u, radius, phi0, twist, rise, elements, fractions);
+    require_finite_extent(g, "radius", geo);
     if (axis_out) *axis_out = {true, base, axis};
   } else {
     const Vec3 centre = g.vec3_or("centre", Vec3::Zero());
@@ -104,6 +125,7 @@ CableGeometry read_geometry(TableReader g, Index elements, GeometryAxis* axis_ou
     const double radius = g.number("radius", Range::positive), angle = g.number("angle");
     if (angle == 0.0) g.fail("angle", "expected a non-zero angle [rad] (zero length)");
     geo = arc_cable(centre, u, w, radius, angle, elements, fractions);
+    require_finite_extent(g, "radius", geo);
     if (axis_out) *axis_out = {true, centre, u.cross(w)};
   }
   g.finish();
@@ -144,7 +166,11 @@ CableMesh read_cable_mesh(TableReader& t, Index elements) {
     const CableGeometry uniform = read_geometry(t.table("geometry"), elements);
     double length = 0.0;
     for (double l : uniform.element_lengths) length += l;
-    fractions = node_fractions(elements, length, grading);
+    try {
+      fractions = node_fractions(elements, length, grading);
+    } catch (const ModelError& e) {
+      t.fail("grading", e.what());
+    }
   }
   mesh.initial = read_geometry(t.table("geometry"), elements, &mesh.axis, fractions);
   mesh.reference_axis = mesh.axis;

@@ -80,6 +80,15 @@ std::vector<double> node_fractions(Index elements, double length, const MeshGrad
     f[k] = x;
     lo = x;
   }
+  // A length scale below round-off against L (λ or m underflowing, the density's exponentials
+  // overflowing) leaves fractions that do not increase, or NaN: refuse them here, where the
+  // cause is known, instead of as a non-increasing mesh in the geometry generators.
+  for (Index k = 1; k <= elements; ++k)
+    if (!(f[k] > f[k - 1]))
+      throw ModelError(
+          "mesh grading: end_length or band_width so far below the length that the element "
+          "lengths do not resolve in double precision (node " +
+          std::to_string(k) + "); expected length scales of the order of the elements");
   return f;
 }
 

@@ -60,6 +60,17 @@ void require_decoupled(const MatX& m, const std::vector<bool>& row_kept,
                                     what);
 }
 
+/// A model that cannot be evaluated at the state (sizes near the double range, say) gives
+/// non-finite matrices, on which the eigen-solver would fail without saying where.
+void require_finite(const Model& model, const MatX& a, const char* what) {
+  for (Index j = 0; j < a.cols(); ++j)
+    for (Index i = 0; i < a.rows(); ++i)
+      if (!std::isfinite(a(i, j)))
+        throw std::domain_error(std::string("natural_modes: the ") + what +
+                                " matrix at the state is not finite in row " +
+                                model.describe_row(i) + ", column " + model.describe_row(j));
+}
+
 }  // namespace
 
 double NaturalModes::omega(Index i) const {
@@ -76,6 +87,8 @@ NaturalModes natural_modes(const Model& model, const SystemState& equilibrium,
   const Index n = model.coordinate_count(), m = model.multiplier_count();
   const MatX k_matrix = dense_iteration_matrix(model, s, {1.0, 0.0, 0.0}, ws);
   const MatX m_matrix = dense_iteration_matrix(model, s, {0.0, 0.0, 1.0}, ws);
+  require_finite(model, k_matrix, "stiffness");
+  require_finite(model, m_matrix, "mass");
   const MatX k_full = k_matrix.topLeftCorner(n, n), m_full = m_matrix.topLeftCorner(n, n);
   const MatX phi_q = k_matrix.bottomLeftCorner(m, n);
 

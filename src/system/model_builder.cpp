@@ -2,6 +2,7 @@
 
 #include <Eigen/LU>
 #include <cmath>
+#include <sstream>
 #include <string>
 
 #include "ancf/core/error.hpp"
@@ -48,9 +49,10 @@ void validate_geometry(const std::string& cable, const CableGeometry& g) {
   if (g.element_count() < 1 || g.node_count() != g.element_count() + 1)
     throw ModelError("cable '" + cable + "': needs >= 1 element and one more node than elements");
   for (Index j = 0; j < g.element_count(); ++j) {
-    if (!(g.element_lengths[j] > 0.0))
+    if (!(g.element_lengths[j] > 0.0) || !std::isfinite(g.element_lengths[j]))
       throw ModelError("cable '" + cable + "': element " + std::to_string(j) +
-                       " has non-positive length " + std::to_string(g.element_lengths[j]));
+                       " has a non-positive or non-finite length " +
+                       std::to_string(g.element_lengths[j]));
   }
   for (Index k = 0; k < g.node_count(); ++k) {
     if (!g.nodes[k].allFinite())
@@ -487,9 +489,23 @@ Model ModelBuilder::finalize() {
     c.node_count = pc.reference.node_count();
     for (Index j = 0; j < pc.reference.element_count(); ++j) {
       const double l = pc.reference.element_lengths[j];
-      c.elements.push_back(CableElementReference::from_reference(
-          pc.reference.element_coordinates(j), l, pc.section.strain, pc.section.quadrature));
+      // Named, so that the scene loader can point at the cable's table.
+      const std::string element =
+          std::string(pc.rod ? "rod '" : "cable '") + pc.name + "' element " + std::to_string(j);
+      try {
+        c.elements.push_back(CableElementReference::from_reference(
+            pc.reference.element_coordinates(j), l, pc.section.strain, pc.section.quadrature));
+      } catch (const ModelError& e) {
+        throw ModelError(element + ": " + e.what());
+      }
       c.mass.push_back(hermite::mass_matrix(pc.section.mass_per_length, l));
+      // ρA l³ terms overflow for lengths far beyond any structure (found by the fuzzer).
+      if (!c.mass.back().allFinite()) {
+        std::ostringstream length;
+        length << l;
+        throw ModelError(element + ": its mass matrix is not finite in double precision (length " +
+                         length.str() + " m)");
+      }
     }
     if (pc.rod) c.rod = make_rod_data(pc, c, twist_first);
     o.cable_first.push_back(next);

@@ -36,7 +36,8 @@ struct MeshGrading {
 /// curve of length `length` > 0 [m]: f_k = s_k/L with N(s_k) = (k/n) N(L), N = ∫ρ (closed form),
 /// solved by safeguarded Newton to round-off. Uniform grading gives f_k = k/n exactly.
 /// Throws ModelError on a ratio outside (0, 1], a non-positive end_length or band_width (where
-/// used) or a band centre outside [0, 1].
+/// used), a band centre outside [0, 1], or length scales so far below `length` that the fractions
+/// do not increase in double precision.
 [[nodiscard]] std::vector<double> node_fractions(Index elements, double length,
                                                  const MeshGrading& grading);
 

@@ -37,6 +37,8 @@ struct NaturalModes {
 /// assemble_iteration_matrix with weights (1, 0, 0) and (0, 0, 1), so the geometric stiffness of
 /// prestress and of non-linear constraints is included. The eigenproblem is reduced to an
 /// orthonormal null-space basis Z of Φ_q (QR of Φ_qᵀ): (Zᵀ K Z) y = ω² (Zᵀ M Z) y, φ = Z y.
+/// Throws std::domain_error if K, Φ_q or M is not finite at the state (naming the row and
+/// column), std::runtime_error if the eigen-solver fails.
 [[nodiscard]] NaturalModes natural_modes(const Model& model, const SystemState& equilibrium,
                                          const ModalAnalysisOptions& options = {});
 
