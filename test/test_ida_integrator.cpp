@@ -4,10 +4,13 @@
 // re-initialization; failure reports.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "ancf/scenes/pendulums.hpp"
@@ -364,19 +367,15 @@ TEST(IdaEvents, ElasticBounceWithReinitialization) {
   EXPECT_LT(energy_error, 100 * o.rtol * spec.mass * spec.gravity * spec.length);
 }
 
-// ---- Failure reports
-// ------------------------------------------------------------------------------ A problem that
-// cannot be evaluated beyond t = 0.3 s (its residual throws std::domain_error, a recoverable error:
-// IDA cuts the step until it gives up). The failure names the time, step and a component; the
-// outputs before it were delivered.
-class FailingAfter final : public DaeProblem {
+// ---- Problems wrapped around a GglProblem ---------------------------------------------------
+// Forwards every call to the wrapped problem; the test problems below change one behaviour.
+class ForwardingProblem : public DaeProblem {
  public:
-  FailingAfter(GglProblem& inner, double t_fail) : inner_(inner), t_fail_(t_fail) {}
+  explicit ForwardingProblem(GglProblem& inner) : inner_(inner) {}
   Index size() const override { return inner_.size(); }
   const SparsityPattern& jacobian_pattern() const override { return inner_.jacobian_pattern(); }
   void residual(double t, std::span<const double> y, std::span<const double> yp,
                 std::span<double> r) override {
-    if (t > t_fail_) throw std::domain_error("model undefined beyond t_fail");
     inner_.residual(t, y, yp, r);
   }
   void jacobian(double t, std::span<const double> y, std::span<const double> yp, double c_j,
@@ -385,14 +384,32 @@ class FailingAfter final : public DaeProblem {
   }
   VariableClass variable_class(Index i) const override { return inner_.variable_class(i); }
   double variable_scale(Index i) const override { return inner_.variable_scale(i); }
+  double time_scale() const override { return inner_.time_scale(); }
   void initial_state(std::span<double> y) const override { inner_.initial_state(y); }
   void consistent_values(double t, std::span<double> y, std::span<double> yp) override {
     inner_.consistent_values(t, y, yp);
   }
   std::string describe_row(Index i) const override { return inner_.describe_row(i); }
 
- private:
+ protected:
   GglProblem& inner_;
+};
+
+// ---- Failure reports
+// ------------------------------------------------------------------------------ A problem that
+// cannot be evaluated beyond t = 0.3 s (its residual throws std::domain_error, a recoverable error:
+// IDA cuts the step until it gives up). The failure names the time, step and a component; the
+// outputs before it were delivered.
+class FailingAfter final : public ForwardingProblem {
+ public:
+  FailingAfter(GglProblem& inner, double t_fail) : ForwardingProblem(inner), t_fail_(t_fail) {}
+  void residual(double t, std::span<const double> y, std::span<const double> yp,
+                std::span<double> r) override {
+    if (t > t_fail_) throw std::domain_error("model undefined beyond t_fail");
+    inner_.residual(t, y, yp, r);
+  }
+
+ private:
   double t_fail_;
 };
 
@@ -423,32 +440,19 @@ TEST(IdaFailure, ReportsTimeStepAndComponentAndKeepsOutputs) {
 
 // A Jacobian with an empty column (here: μ of one row removed from every equation) is singular at
 // the first factorization; the report names the unknown of that column.
-class SingularColumn final : public DaeProblem {
+class SingularColumn final : public ForwardingProblem {
  public:
-  explicit SingularColumn(GglProblem& inner) : inner_(inner), column_(inner.mu_offset()) {}
-  Index size() const override { return inner_.size(); }
-  const SparsityPattern& jacobian_pattern() const override { return inner_.jacobian_pattern(); }
-  void residual(double t, std::span<const double> y, std::span<const double> yp,
-                std::span<double> r) override {
-    inner_.residual(t, y, yp, r);
-  }
+  explicit SingularColumn(GglProblem& inner)
+      : ForwardingProblem(inner), column_(inner.mu_offset()) {}
   void jacobian(double t, std::span<const double> y, std::span<const double> yp, double c_j,
                 std::span<double> v) override {
     inner_.jacobian(t, y, yp, c_j, v);
     const SparsityPattern& p = inner_.jacobian_pattern();
     for (Index k = p.column_start()[column_]; k < p.column_start()[column_ + 1]; ++k) v[k] = 0.0;
   }
-  VariableClass variable_class(Index i) const override { return inner_.variable_class(i); }
-  double variable_scale(Index i) const override { return inner_.variable_scale(i); }
-  void initial_state(std::span<double> y) const override { inner_.initial_state(y); }
-  void consistent_values(double t, std::span<double> y, std::span<double> yp) override {
-    inner_.consistent_values(t, y, yp);
-  }
-  std::string describe_row(Index i) const override { return inner_.describe_row(i); }
   [[nodiscard]] Index column() const { return column_; }
 
  private:
-  GglProblem& inner_;
   Index column_;
 };
 
@@ -498,6 +502,59 @@ TEST(IdaAtRest, StressFreeCurvedCableWithoutLoadsStaysPut) {
   const double moved = (state.q - model.initial_coordinates()).lpNorm<Eigen::Infinity>();
   std::printf("  %ld steps, max |q - q0| %.3e\n", ida.statistics().steps, moved);
   EXPECT_LE(moved, 1e-9);
+}
+
+// A problem that keeps history (rods) is stepped one internal step at a time so that each
+// accepted step is committed. Steps longer than the output interval then cover several output
+// times; the integrator must interpolate them all in that step, as IDA_NORMAL does (it once took
+// a further step first and failed with IDA_BAD_T: a rod at rest, its steps growing past the
+// interval). The outputs equal those of the same problem without history (IDA takes the same
+// steps), and every accepted step is committed once, in order.
+class CommitCounting final : public ForwardingProblem {
+ public:
+  using ForwardingProblem::ForwardingProblem;
+  [[nodiscard]] bool keeps_history() const override { return true; }
+  void commit_step(double t, std::span<const double> /*y*/) override { commits.push_back(t); }
+  std::vector<double> commits;
+};
+
+TEST(IdaHistory, StepsLongerThanTheOutputIntervalAreInterpolated) {
+  const Model model = rigid_pendulum_model(RigidPendulumSpec{});
+  IdaOptions o;
+  o.output_times = linspace(1.0, 2000);  // 0.5 ms, far below the steps at rtol 1e-6
+  auto outputs = [&](DaeProblem& problem, IdaStatistics& statistics) {
+    IdaIntegrator ida(problem, o);
+    std::vector<std::vector<double>> y;
+    ida.run([&](double, std::span<const double> yt, std::span<const double>) {
+      y.emplace_back(yt.begin(), yt.end());
+    });
+    statistics = ida.statistics();
+    return y;
+  };
+  GglProblem plain(model), wrapped(model);
+  CommitCounting history(wrapped);
+  IdaStatistics plain_stats, history_stats;
+  const auto expected = outputs(plain, plain_stats);
+  const auto got = outputs(history, history_stats);
+  std::printf("  %zu outputs, %ld steps, %zu commits\n", got.size(), history_stats.steps,
+              history.commits.size());
+  ASSERT_EQ(got.size(), o.output_times.size());
+  ASSERT_EQ(expected.size(), got.size());
+  EXPECT_LT(history_stats.steps, 200);  // several outputs per step, else this tests nothing
+  EXPECT_EQ(history_stats.steps, plain_stats.steps);
+  // The same steps and interpolating polynomial; IDAGetDky and IDA_NORMAL's own interpolation
+  // evaluate it in different order: round-off of the largest unknown.
+  double worst = 0.0, largest = 0.0;
+  for (std::size_t k = 0; k < got.size(); ++k)
+    for (std::size_t i = 0; i < got[k].size(); ++i) {
+      worst = std::max(worst, std::abs(got[k][i] - expected[k][i]));
+      largest = std::max(largest, std::abs(expected[k][i]));
+    }
+  std::printf("  largest output difference %.3g (largest unknown %.3g)\n", worst, largest);
+  EXPECT_LE(worst, 64 * std::numeric_limits<double>::epsilon() * largest);
+  ASSERT_EQ(history.commits.size(), static_cast<std::size_t>(history_stats.steps));
+  for (std::size_t k = 1; k < history.commits.size(); ++k)
+    EXPECT_GT(history.commits[k], history.commits[k - 1]);
 }
 
 }  // namespace
