@@ -20,6 +20,7 @@ Exit status 1 when anything odd was found. docs/fuzzing.md, "Random rod scenes",
 import argparse
 import os
 import random
+import re
 import shutil
 import subprocess
 import sys
@@ -109,9 +110,24 @@ def scene(seed):
               "rod_frame_turn = %g" % rng.choice([0, 0.1, 2])]
     if method == "genalpha":
         lines += ["[integrator.genalpha]", "step = %g" % min(t_end, 10 ** rng.uniform(-5, -2))]
-    lines += ["[output]", "interval = %g" % t_end, "vtk = false", "[[output.probe]]",
+    # Up to 100 outputs: IDA's steps then span several output times (interpolation paths).
+    lines += ["[output]", "interval = %g" % (t_end / rng.choice([1, 10, 100])), "vtk = false",
+              "[[output.probe]]",
               'kind = "rod"', 'at = { cable = "r", node = -1 }', 'label = "tip"']
     return "\n".join(lines) + "\n"
+
+
+# SUNDIALS return flags that mean the caller used IDA wrongly (an output time outside the last
+# step, bad input, memory not set up), whatever the scene.
+DRIVER_MISUSE = ("IDA_BAD_T", "IDA_ILL_INPUT", "IDA_MEM_NULL", "IDA_NO_MALLOC", "IDA_BAD_K",
+                 "IDA_BAD_DKY")
+
+
+def failure_reason(stderr):
+    """The gist of a reported failure: its first line, numbers and names replaced."""
+    line = next((l for l in stderr.splitlines() if "failed" in l or "error" in l),
+                stderr.strip().splitlines()[0] if stderr.strip() else "")
+    return re.sub(r"'[^']*'", "'…'", re.sub(r"[-+]?\d[\d.eE+-]*", "#", line.strip()))[:110]
 
 
 COMMANDS = (("check", []), ("static", ["--quiet"]), ("modes", ["--static", "--no-vtk"]),
@@ -128,7 +144,7 @@ def main():
     parser.add_argument("--keep", action="store_true", help="keep the outputs of clean seeds too")
     args = parser.parse_args()
     out = args.out or tempfile.mkdtemp(prefix="random_rod_scenes_")
-    counts = {}
+    counts, reasons = {}, {}
     odd, slow = [], []
     for seed in range(args.first, args.first + args.count):
         directory = os.path.join(out, str(seed))
@@ -153,6 +169,11 @@ def main():
             if ("terminate called" in stderr or "Sanitizer" in stderr
                     or "runtime error" in stderr):
                 outcome = "odd"
+            if any(flag in stderr for flag in DRIVER_MISUSE):
+                outcome = "odd"  # the driver misused IDA: not a property of the scene
+            if outcome == "failed (reported)":
+                reason = failure_reason(stderr)
+                reasons[(command, reason)] = reasons.get((command, reason), 0) + 1
             counts[(command, outcome)] = counts.get((command, outcome), 0) + 1
             if outcome == "odd":
                 odd.append((seed, command, code, stderr.strip()[-400:]))
@@ -166,6 +187,8 @@ def main():
                         for o in ("completed", "refused", "failed (reported)", "timeout", "odd")
                         if (command, o) in counts)
         print("%-7s %s" % (command, row))
+    for (command, reason), n in sorted(reasons.items(), key=lambda x: (x[0][0], -x[1])):
+        print("  %s failed %d x: %s" % (command, n, reason))
     for seed, command in slow:
         print("slow: seed %d, ancf %s (> %g s): %s" % (seed, command, args.timeout,
                                                       os.path.join(out, str(seed))))
