@@ -136,17 +136,22 @@ TEST(ModalAnalysis, FreeFreeBeamWithoutConstraints) {
   }
 }
 
-// A cable pinned to a point off its axis with a slope constraint along a skew direction couples
-// x and y: restricting to one component must be refused, not give wrong frequencies.
-TEST(ModalAnalysis, RefusesCoupledComponent) {
+// A 4-element cable from the origin to `end`, pinned at the origin.
+Model pinned_cable(const std::string& name, const Vec3& end) {
   ModelBuilder b;
   CableSection s;
   s.axial_stiffness = 1e4;
   s.bending_stiffness = 1.0;
   s.mass_per_length = 1.0;
-  const Index c = b.add_cable("skew", straight_cable(Vec3::Zero(), Vec3(1.0, 1.0, 0.0), 4), s);
+  const Index c = b.add_cable(name, straight_cable(Vec3::Zero(), end, 4), s);
   b.pin("root", {c, 0}, Vec3::Zero());
-  const Model model = b.finalize();
+  return b.finalize();
+}
+
+// A cable along a skew direction (x = y) couples x and y in K and M: restricting to one component
+// must be refused, not give wrong frequencies.
+TEST(ModalAnalysis, RefusesCoupledComponent) {
+  const Model model = pinned_cable("skew", Vec3(1.0, 1.0, 0.0));
   EXPECT_THROW((void)natural_modes(model, SystemState::initial(model), {.component = 0}),
                std::invalid_argument);
   // All components together are fine: 6·5 − 3 unknowns; the two rigid rotations about the pin
@@ -163,14 +168,7 @@ TEST(ModalAnalysis, RefusesCoupledComponent) {
 // domain_error that names the coordinate, not passed to the eigen-solver (whose failure says
 // nothing, and which `ancf modes` once let abort the process).
 TEST(ModalAnalysis, RefusesStateWithNonFiniteMatrices) {
-  ModelBuilder b;
-  CableSection s;
-  s.axial_stiffness = 1e4;
-  s.bending_stiffness = 1.0;
-  s.mass_per_length = 1.0;
-  const Index c = b.add_cable("rope", straight_cable(Vec3::Zero(), Vec3(1.0, 0.0, 0.0), 4), s);
-  b.pin("root", {c, 0}, Vec3::Zero());
-  const Model model = b.finalize();
+  const Model model = pinned_cable("rope", Vec3(1.0, 0.0, 0.0));
   SystemState state = SystemState::initial(model);
   state.q[model.cables()[0].first_coordinate + 6 * 2 + 3] = std::numeric_limits<double>::infinity();
   try {
