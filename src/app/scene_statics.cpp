@@ -17,15 +17,21 @@ void solve_scene_statics(const Scene& scene, const StaticSettings& settings, Sce
   options.max_iterations = settings.max_iterations;
   options.increment_tolerance = settings.increment_tolerance;
   StaticSolver solver(problem, options);
+  // The state and the history it was committed with, also for the last converged state of a
+  // failed solve.
+  auto keep = [&] {
+    result.state.q = y.head(n);
+    result.state.lambda = y.tail(model.multiplier_count());
+    result.rod_history = problem.workspace().rods;
+    result.state.rod_history = &result.rod_history;
+  };
   try {
     result.statistics = solver.solve(y);
   } catch (...) {
-    result.state.q = y.head(n);
-    result.state.lambda = y.tail(model.multiplier_count());
+    keep();
     throw;
   }
-  result.state.q = y.head(n);
-  result.state.lambda = y.tail(model.multiplier_count());
+  keep();
 }
 
 void add_static_json(const StaticSettings& settings, const StaticSolverStatistics& statistics,

@@ -16,9 +16,18 @@ struct StaticSettings {
   double increment_tolerance = 1e-11;  ///< StaticSolverOptions::increment_tolerance
 };
 
+/// The result of solve_scene_statics. Not copyable: `state.rod_history` points at `rod_history`.
 struct SceneStatics {
+  SceneStatics() = default;
+  SceneStatics(const SceneStatics&) = delete;
+  SceneStatics& operator=(const SceneStatics&) = delete;
+
   /// The equilibrium at t = 0: q, λ solved; v = a = 0. On failure, the last converged state.
   SystemState state;
+  /// The rod frame history committed with `state` (rods' twist coordinates are angles relative
+  /// to it, docs/rod.md "History"): outputs and modes must evaluate the state under it, not
+  /// under the reference frames, which a rod turned by π or more cannot even be evaluated on.
+  RodHistory rod_history;
   StaticSolverStatistics statistics;
 };
 

@@ -1,6 +1,7 @@
 // The Kirchhoff rod contributions to the residual and iteration matrix (private to assembly.cpp,
-// which includes it after its scatter targets): element forces and matrices under the
-// workspace's committed history, centreline and twist inertia, mass-proportional damping of the
+// which includes it after its scatter targets and history_of): element forces and matrices under
+// the committed history (the state's if it names one, e.g. a static solution's; else the
+// workspace's), centreline and twist inertia, mass-proportional damping of the
 // centreline and the end and distributed moments with their load stiffness.
 #pragma once
 
@@ -29,12 +30,12 @@ void for_each_rod_element(const Model& model, const VecX& q, const VecX& v, Visi
 // Evaluate every element under a distributed moment into ws.rod_moment (its Jacobian if asked)
 // and visit it.
 template <class Visitor>
-void for_each_distributed_moment(const Model& model, const VecX& q, Workspace& ws, bool jacobian,
-                                 Visitor&& visit) {
+void for_each_distributed_moment(const Model& model, const VecX& q, const RodHistory& history,
+                                 Workspace& ws, bool jacobian, Visitor&& visit) {
   for (const RodDistributedMomentData& d : model.rod_distributed_moments()) {
     const CableData& c = model.cables()[d.cable];
     for (Index j = d.first; j < d.first + d.count; ++j) {
-      rod_distributed_moment(c.rod->elements[j], ws.rods.element(d.cable, j),
+      rod_distributed_moment(c.rod->elements[j], history.element(d.cable, j),
                              rod_element_coordinates(c, j, as_span(q)), d.moment_per_length,
                              jacobian, ws.rod_moment);
       visit(c, j);
@@ -46,10 +47,11 @@ void for_each_distributed_moment(const Model& model, const VecX& q, Workspace& w
 // moments. `inertia`: a holds accelerations.
 inline void add_rod_residual(const Model& model, const SystemState& state, double load_factor,
                              bool inertia, Workspace& ws, Eigen::Map<VecX>& r) {
+  const RodHistory& history = history_of(state, ws);
   for_each_rod_element(
       model, state.q, state.v,
       [&](Index ci, Index j, const CableData& c, const Vec15& e, const Vec15& ed) {
-        evaluate_rod_element(c.rod->section, c.rod->elements[j], ws.rods.element(ci, j), e, ed, {},
+        evaluate_rod_element(c.rod->section, c.rod->elements[j], history.element(ci, j), e, ed, {},
                              ws.rod);
         const int n = c.rod->element_coordinates();
         for (int i = 0; i < n; ++i) r[c.rod_coordinate(j, i)] += ws.rod.force[i];
@@ -70,11 +72,11 @@ inline void add_rod_residual(const Model& model, const SystemState& state, doubl
   for (const RodMomentData& d : model.rod_moments()) {
     const Index t = d.coordinates[0];
     const RodMomentLoad load =
-        rod_end_moment(ws.rods.frames[d.cable][d.node],
+        rod_end_moment(history.frames[d.cable][d.node],
                        Vec3(state.q[t], state.q[t + 1], state.q[t + 2]), d.moment);
     for (int k = 0; k < 4; ++k) r[d.coordinates[k]] -= load_factor * load.force[k];
   }
-  for_each_distributed_moment(model, state.q, ws, false, [&](const CableData& c, Index j) {
+  for_each_distributed_moment(model, state.q, history, ws, false, [&](const CableData& c, Index j) {
     for (int i = 0; i < c.rod->element_coordinates(); ++i)
       r[c.rod_coordinate(j, i)] -= load_factor * ws.rod_moment.force[i];
   });
@@ -85,6 +87,7 @@ template <class Target>
 void add_rod_matrix(const Model& model, const SystemState& state, const IterationWeights& w,
                     Workspace& ws, const Target& t) {
   const RodEvalRequest request{.stiffness = w.w_q != 0.0, .damping_matrix = w.w_v != 0.0};
+  const RodHistory& history = history_of(state, ws);
   for_each_rod_element(
       model, state.q, state.v,
       [&](Index ci, Index j, const CableData& c, const Vec15& e, const Vec15& ed) {
@@ -92,7 +95,7 @@ void add_rod_matrix(const Model& model, const SystemState& state, const Iteratio
         const int n = c.rod->element_coordinates();
         const bool damping = request.damping_matrix && c.rod->section.has_damping();
         if (request.stiffness || damping) {
-          evaluate_rod_element(c.rod->section, c.rod->elements[j], ws.rods.element(ci, j), e, ed,
+          evaluate_rod_element(c.rod->section, c.rod->elements[j], history.element(ci, j), e, ed,
                                request, ws.rod);
           for (int col = 0; col < n; ++col)
             for (int row = 0; row < n; ++row) {
@@ -116,13 +119,13 @@ void add_rod_matrix(const Model& model, const SystemState& state, const Iteratio
   for (const RodMomentData& d : model.rod_moments()) {
     const Index q = d.coordinates[0];
     const RodMomentLoad load =
-        rod_end_moment(ws.rods.frames[d.cable][d.node],
+        rod_end_moment(history.frames[d.cable][d.node],
                        Vec3(state.q[q], state.q[q + 1], state.q[q + 2]), d.moment);
     for (int col = 0; col < 4; ++col)
       for (int row = 0; row < 4; ++row)
         t.position(d.slots[4 * col + row]) -= w.w_q * w.load_factor * load.jacobian(row, col);
   }
-  for_each_distributed_moment(model, state.q, ws, true, [&](const CableData& c, Index j) {
+  for_each_distributed_moment(model, state.q, history, ws, true, [&](const CableData& c, Index j) {
     const int n = c.rod->element_coordinates();
     for (int col = 0; col < n; ++col)
       for (int row = 0; row < n; ++row)
