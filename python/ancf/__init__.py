@@ -19,6 +19,7 @@ from ._ancf import (  # noqa: F401  (the compiled core)
     Simulation,
     solve_statics,
     natural_modes,
+    RodFrames,
     __version__,
 )
 from . import _ancf
@@ -27,8 +28,8 @@ from .builder import SceneBuilder
 
 __all__ = [
     "Error", "ModelError", "SceneError", "SolverError", "Scene", "Simulation", "SceneBuilder",
-    "load", "loads", "run", "solve_statics", "natural_modes", "integrator_overrides",
-    "__version__",
+    "load", "loads", "run", "solve_statics", "natural_modes", "RodFrames",
+    "integrator_overrides", "__version__",
 ]
 
 

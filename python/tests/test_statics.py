@@ -113,3 +113,35 @@ def test_rod_uniform_distributed_torque():
     s = np.linspace(0.0, length, n + 1)
     node_angles = q[: n + 1]  # the twist block comes first: node angles, then interior twists
     assert np.max(np.abs(node_angles - m * (length * s - 0.5 * s * s) / gj)) < 1e-12
+
+
+def test_rod_modes_about_a_static_solution_use_its_frames(tmp_path, executable):
+    """A rod turned into a two-turn helix by an inclined end moment: its static q holds twist
+    angles relative to frames the solver updated on the way, returned as 'rod_frames'. The modes
+    about that state with them equal `ancf modes --static` (the same computation); without them
+    (the reference frames) they do not (until 2026-12-06 that was the only way)."""
+    import subprocess
+
+    from conftest import SOURCE
+
+    scene_file = SOURCE / "test" / "scenes" / "statics" / "rod_helix_moment.toml"
+    scene = ancf.load(scene_file)
+    static = ancf.solve_statics(scene, load_steps=40)
+    assert isinstance(static["rod_frames"], ancf.RodFrames)
+    with_frames = ancf.natural_modes(scene, static["q"], static["lam"],
+                                     rod_frames=static["rod_frames"])["omega_squared"]
+    without = ancf.natural_modes(scene, static["q"], static["lam"])["omega_squared"]
+    subprocess.run([executable, "modes", str(scene_file), "--static", "--load-steps", "40",
+                    "--no-vtk", "--quiet", "--out", str(tmp_path)], check=True)
+    command = np.loadtxt(tmp_path / "modes.csv", delimiter=",", skiprows=1, usecols=1)
+    k = len(command)
+    scale = np.max(np.abs(command))
+    assert np.max(np.abs(with_frames[:k] - command)) < 1e-9 * scale
+    assert np.max(np.abs(without[:k] - command)) > 1e-3 * scale
+    # Without rods there are no frames to return.
+    b = ancf.SceneBuilder("bar")
+    b.cable(name="bar", elements=2, geometry={"kind": "straight", "start": [0, 0, 0],
+                                             "end": [1, 0, 0]},
+            section={"EA": 1e3, "EI": 1.0, "mass_per_length": 1.0})
+    b.joint(name="root", kind="clamp", at={"cable": "bar", "node": 0})
+    assert ancf.solve_statics(b.build())["rod_frames"] is None
