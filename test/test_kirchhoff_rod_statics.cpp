@@ -98,23 +98,31 @@ TEST(KirchhoffRodStatics, RollUpByEndMomentConvergesAtFourthOrder) {
 
 // Dead end moment M at ψ = 45° to the rod, EI = GJ = 100, L = 10, |M| = 40π: two turns of a
 // helix about M with the tip at L cos ψ ê = (5, 0, 5) (rod-formulations.md §4.2).
+constexpr double kHelixLength = 10.0, kHelixEI = 100.0, kHelixMoment = 40.0 * kPi;
+
+// The cantilever of HelixByInclinedEndMoment on n elements: L = 10 m, EI = GJ = 100 N m², a dead
+// end moment of 40π N m at ψ = 45° to the rod (two turns).
+Model helix_by_inclined_moment(Index n) {
+  const double psi = 0.25 * kPi;
+  const CableGeometry g = straight_cable(Vec3::Zero(), Vec3(kHelixLength, 0, 0), n);
+  ModelBuilder b;
+  const Index rod = b.add_rod("rod", g, CableSection{}, rod_section(1e6, kHelixEI, kHelixEI),
+                              rod_frames_with_normal(g, Vec3::UnitY()));
+  clamp(b, rod, g);
+  b.add_node_moment({rod, -1}, kHelixMoment * Vec3(std::cos(psi), 0, std::sin(psi)));
+  return b.finalize();
+}
+
 TEST(KirchhoffRodStatics, HelixByInclinedEndMoment) {
-  const double length = 10.0, ei = 100.0, psi = 0.25 * kPi, mag = 40.0 * kPi;
   std::vector<double> h, err;
   for (const Index n : {16, 32}) {
-    const CableGeometry g = straight_cable(Vec3::Zero(), Vec3(length, 0, 0), n);
-    ModelBuilder b;
-    const Index rod = b.add_rod("rod", g, CableSection{}, rod_section(1e6, ei, ei),
-                                rod_frames_with_normal(g, Vec3::UnitY()));
-    clamp(b, rod, g);
-    b.add_node_moment({rod, -1}, mag * Vec3(std::cos(psi), 0, std::sin(psi)));
-    const Model m = b.finalize();
+    const Model m = helix_by_inclined_moment(n);
     const Solved s = solve(m, 40);
     const double e = (tip(m, s.y) - Vec3(5, 0, 5)).norm();
     std::printf("helix 2 turns, %2lld elements: tip error %.3e m, tip slope (%.6f %.6f %.6f)\n",
                 static_cast<long long>(n), e, s.y[m.node_coordinate(0, -1) + 3],
                 s.y[m.node_coordinate(0, -1) + 4], s.y[m.node_coordinate(0, -1) + 5]);
-    h.push_back(length / n);
+    h.push_back(kHelixLength / n);
     err.push_back(e);
   }
   EXPECT_LT(err.back(), err.front() / 8.0);  // at least third order between the meshes
@@ -128,14 +136,7 @@ TEST(KirchhoffRodStatics, HelixByInclinedEndMoment) {
 // `ancf static` wrote such outputs (torque 89.35 instead of 88.86 N m, energy 579 instead of 790 J)
 // and `ancf modes --static` linearised there.
 TEST(KirchhoffRodStatics, StaticSolutionIsEvaluatedUnderItsHistory) {
-  const double length = 10.0, ei = 100.0, psi = 0.25 * kPi, mag = 40.0 * kPi;
-  const CableGeometry g = straight_cable(Vec3::Zero(), Vec3(length, 0, 0), 32);
-  ModelBuilder b;
-  const Index rod = b.add_rod("rod", g, CableSection{}, rod_section(1e6, ei, ei),
-                              rod_frames_with_normal(g, Vec3::UnitY()));
-  clamp(b, rod, g);
-  b.add_node_moment({rod, -1}, mag * Vec3(std::cos(psi), 0, std::sin(psi)));
-  const Model m = b.finalize();
+  const Model m = helix_by_inclined_moment(32);
   StaticModelProblem problem(m);
   StaticSolver solver(problem, {.load_steps = 40});
   VecX y = problem.initial_guess();
@@ -151,7 +152,7 @@ TEST(KirchhoffRodStatics, StaticSolutionIsEvaluatedUnderItsHistory) {
     assemble_residual(m, s, 1.0, ws, as_span(r));
     return r.lpNorm<Eigen::Infinity>();
   };
-  const double exact_energy = mag * mag * length / (2.0 * ei);
+  const double exact_energy = kHelixMoment * kHelixMoment * kHelixLength / (2.0 * kHelixEI);
   state.rod_history = &problem.workspace().rods;
   const double with_history = residual_norm(state);
   Workspace ws(m);
@@ -163,7 +164,8 @@ TEST(KirchhoffRodStatics, StaticSolutionIsEvaluatedUnderItsHistory) {
       "under the reference frames; energy %.6f (|M|²L/2EI = %.6f)\n",
       with_history, stats.residual_norm, without, energy, exact_energy);
   // The solver's own residual norm, to round-off of the largest force (|M| = 126 N m).
-  EXPECT_LE(with_history, stats.residual_norm + 1e3 * std::numeric_limits<double>::epsilon() * mag);
+  EXPECT_LE(with_history,
+            stats.residual_norm + 1e3 * std::numeric_limits<double>::epsilon() * kHelixMoment);
   EXPECT_GT(without, 1.0);
   // The discretisation error of the energy: 1.2e-3 at 16 elements, falling as h⁴ (HelixByInclined-
   // EndMoment's tip), so about 1e-4 at 32; under the reference frames it is 0.27.
