@@ -542,8 +542,8 @@ TEST(IdaHistory, StepsLongerThanTheOutputIntervalAreInterpolated) {
   ASSERT_EQ(expected.size(), got.size());
   EXPECT_LT(history_stats.steps, 200);  // several outputs per step, else this tests nothing
   EXPECT_EQ(history_stats.steps, plain_stats.steps);
-  // The same steps and interpolating polynomial; IDAGetDky and IDA_NORMAL's own interpolation
-  // evaluate it in different order: round-off of the largest unknown.
+  // The same steps and interpolating polynomial, evaluated by IDA_NORMAL on both paths (equal as
+  // measured); the bound leaves round-off of the largest unknown to an evaluation in other order.
   double worst = 0.0, largest = 0.0;
   for (std::size_t k = 0; k < got.size(); ++k)
     for (std::size_t i = 0; i < got[k].size(); ++i) {

@@ -456,34 +456,25 @@ IdaStop IdaIntegrator::solve(double t_out, int task) {
     flag = IDASolve(s.mem.get(), t_out, &t_reached, s.y.get(), s.yp.get(), IDA_ONE_STEP);
     if (flag >= 0 && !s.fatal) s.problem.commit_step(t_reached, view(s.y.get()));
   } else {
-    // One internal step at a time, so that the problem commits each accepted step's state
-    // (DaeProblem::commit_step); the output at t_out is IDA's interpolant, as in IDA_NORMAL.
+    // One internal step at a time until a step reaches t_out, so that the problem commits each
+    // accepted step's state (DaeProblem::commit_step); then IDA_NORMAL, which takes no further
+    // step: it checks the rest of that step for roots and interpolates at t_out. A step taken for
+    // an earlier output may already reach past t_out (steps longer than the output interval, e.g.
+    // a rod at rest); another IDA_ONE_STEP would step first, leaving t_out outside the step.
     realtype t_internal = t_;
     check(IDAGetCurrentTime(s.mem.get(), &t_internal), "IDAGetCurrentTime");
-    if (t_internal >= t_out) {
-      // A step taken (and committed) for an earlier output already reaches past t_out (steps
-      // longer than the output interval, e.g. a rod at rest). IDA_ONE_STEP would take a further
-      // step first, leaving t_out outside the step IDAGetDky interpolates in (IDA_BAD_T);
-      // IDA_NORMAL takes none here: it checks the rest of that step for roots and interpolates.
-      flag = IDASolve(s.mem.get(), t_out, &t_reached, s.y.get(), s.yp.get(), IDA_NORMAL);
-    } else {
-      for (;;) {
-        flag = IDASolve(s.mem.get(), t_out, &t_reached, s.y.get(), s.yp.get(), IDA_ONE_STEP);
-        if (flag < 0 || s.fatal) break;
-        // After an IDA_NORMAL return inside the last step, IDA_ONE_STEP first returns that
-        // step's end state again, without stepping: it is committed already.
-        const bool repeated = flag == IDA_SUCCESS && t_reached == t_internal;
-        t_internal = std::max(t_internal, t_reached);
-        if (!repeated) s.problem.commit_step(t_reached, view(s.y.get()));
-        if (flag == IDA_ROOT_RETURN || flag == IDA_TSTOP_RETURN) break;
-        if (t_reached >= t_out) {
-          check(IDAGetDky(s.mem.get(), t_out, 0, s.y.get()), "IDAGetDky");
-          check(IDAGetDky(s.mem.get(), t_out, 1, s.yp.get()), "IDAGetDky");
-          t_reached = t_out;
-          break;
-        }
-      }
+    while (t_internal < t_out) {
+      flag = IDASolve(s.mem.get(), t_out, &t_reached, s.y.get(), s.yp.get(), IDA_ONE_STEP);
+      if (flag < 0 || s.fatal) break;
+      // After an IDA_NORMAL return inside the last step, IDA_ONE_STEP first returns that step's
+      // end state again, without stepping: it is committed already.
+      if (!(flag == IDA_SUCCESS && t_reached == t_internal))
+        s.problem.commit_step(t_reached, view(s.y.get()));
+      t_internal = std::max(t_internal, t_reached);
+      if (flag == IDA_ROOT_RETURN || flag == IDA_TSTOP_RETURN) break;
     }
+    if (flag >= 0 && flag != IDA_ROOT_RETURN && flag != IDA_TSTOP_RETURN && !s.fatal)
+      flag = IDASolve(s.mem.get(), t_out, &t_reached, s.y.get(), s.yp.get(), IDA_NORMAL);
   }
   s.wall_time += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   t_ = t_reached;
