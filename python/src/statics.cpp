@@ -112,8 +112,9 @@ problem names the unknowns of the zero-stiffness direction and the load factor).
         R"(Natural frequencies and mode shapes linearised at an equilibrium (dense: small models).
 
 Without q: at the initial configuration, which must be an equilibrium (λ by least squares); with
-q (and lam, e.g. from solve_statics, with its rod_frames when the scene has rods): at that state. component = 0, 1, 2 keeps only the x, y or z
-components (decoupled problems, e.g. a straight cable). Returns {'omega_squared', 'omega' [rad/s],
+q (and lam, e.g. from solve_statics, with its rod_frames when the scene has rods): at that state.
+component = 0, 1, 2 keeps only the x, y or z components (decoupled problems, e.g. a straight
+cable). Returns {'omega_squared', 'omega' [rad/s],
 'frequency_hz', 'shapes' (coordinates × modes, M-orthonormal), 'selected_coordinates',
 'constraint_rank', 'asymmetry'}. Raises ValueError when the state is not an equilibrium or the
 component is coupled.)");
